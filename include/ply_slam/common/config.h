@@ -1,0 +1,57 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "ply_slam/common/pinhole_camera.h"
+
+namespace ply_slam {
+
+// A config file that cannot be used: names the file, the key and the fault.
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// ORB extraction (features module).
+struct OrbParams {
+  int num_features = 1000;  // target over all pyramid levels
+  int num_levels = 8;
+  double scale_factor = 1.2;
+  int fast_threshold = 20;     // FAST threshold tried first in every grid cell
+  int min_fast_threshold = 7;  // retried in cells where the first one found nothing
+  int grid_cell_size = 32;     // px; corners are spread by cell, then by quadtree
+  int edge_threshold = 19;     // px kept free at the border (descriptor patch)
+};
+
+// Tracking (tracking module).
+struct TrackingParams {
+  int search_radius_px = 15;            // projection matching window at scale level 0
+  int max_descriptor_distance = 60;     // Hamming, accept a match below this
+  double nn_ratio = 0.9;                // best / second best distance
+  int min_tracked_points = 30;          // fewer inliers: tracking is lost
+  int local_map_keyframes = 10;         // covisible keyframes whose points form the local map
+  double huber_pixels = 2.4;            // robust kernel width sqrt(5.99) px
+  double chi2_outlier = 5.991;          // 2-DoF chi-square 95 %: outlier above
+  int optimisation_rounds = 4;          // outlier re-classification rounds
+  double keyframe_min_ratio = 0.85;     // new keyframe when tracked < ratio * reference keyframe's
+  int keyframe_max_frames = 20;         // or after this many frames
+  double keyframe_translation = 0.10;   // m, or after moving this far
+  double keyframe_rotation_deg = 15.0;  // or after turning this far
+  int pnp_iterations = 200;             // RANSAC iterations when projection matching fails
+  double pnp_reprojection_px = 4.0;
+  double max_point_depth = 6.0;  // m; points beyond are not mapped (depth noise grows as Z^2)
+};
+
+struct SystemConfig {
+  std::string source_path;  // the file it was loaded from
+  PinholeCamera camera;
+  OrbParams orb;
+  TrackingParams tracking;
+};
+
+// Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and
+// out-of-range values throw ConfigError naming the file and key.
+SystemConfig loadConfig(const std::string& path);
+
+}  // namespace ply_slam

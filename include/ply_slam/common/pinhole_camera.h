@@ -1,0 +1,42 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+namespace ply_slam {
+
+// Depth-sensor noise, variance in m^2: sigma_Z^2 = alpha Z^2 + beta Z + gamma (PAPER.md §3.1).
+struct DepthNoiseModel {
+  double alpha = 0.0;
+  double beta = 0.0;
+  double gamma = 0.0;
+  double variance(double z) const { return alpha * z * z + beta * z + gamma; }
+};
+
+// Pinhole RGB-D camera. Pixel coordinates used by the algorithms are undistorted;
+// `distortion` (OpenCV k1 k2 p1 p2 k3) maps raw image pixels to them.
+struct PinholeCamera {
+  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
+  int width = 0, height = 0;
+  cv::Mat distortion;            // 1x5 CV_64F, empty or all zero when the image is rectified
+  double depth_factor = 5000.0;  // raw 16-bit depth units per metre
+  double min_depth = 0.1;        // m; depth outside [min_depth, max_depth] counts as invalid
+  double max_depth = 8.0;
+  DepthNoiseModel depth_noise;
+
+  Eigen::Vector2d project(const Eigen::Vector3d& p_c) const {
+    return {fx * p_c.x() / p_c.z() + cx, fy * p_c.y() / p_c.z() + cy};
+  }
+  Eigen::Vector3d backProject(const Eigen::Vector2d& uv, double depth) const {
+    return {(uv.x() - cx) * depth / fx, (uv.y() - cy) * depth / fy, depth};
+  }
+  bool inImage(const Eigen::Vector2d& uv, double border = 0.0) const {
+    return uv.x() >= border && uv.y() >= border && uv.x() < width - border &&
+           uv.y() < height - border;
+  }
+  bool validDepth(double z) const { return z >= min_depth && z <= max_depth; }
+  bool hasDistortion() const;
+  cv::Matx33d K() const { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
+};
+
+}  // namespace ply_slam

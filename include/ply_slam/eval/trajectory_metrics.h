@@ -1,0 +1,40 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstddef>
+
+#include "ply_slam/common/stamped_pose.h"
+
+namespace ply_slam {
+
+struct ErrorStats {
+  size_t count = 0;
+  double rmse = 0.0, mean = 0.0, median = 0.0, max = 0.0;
+};
+
+struct AteResult {
+  ErrorStats translation;                                      // m, after alignment
+  Eigen::Isometry3d T_gt_est = Eigen::Isometry3d::Identity();  // maps estimate into gt frame
+};
+
+struct RpeResult {
+  ErrorStats translation;  // m
+  ErrorStats rotation;     // degrees
+};
+
+// Closed-form rigid alignment (Horn / Umeyama, no scale) minimising sum |gt - T est|^2.
+Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
+                             const std::vector<Eigen::Vector3d>& gt);
+
+// Absolute trajectory error, TUM definition: associate stamps within max_dt, align, RMSE etc.
+// Throws std::runtime_error when fewer than 3 pairs associate.
+AteResult computeAte(const Trajectory& gt, const Trajectory& est, double max_dt = 0.02);
+
+// Relative pose error, TUM definition, over pairs of associated poses `delta_frames` apart
+// (in the estimate's order) or `delta_seconds` apart.
+RpeResult computeRpeFrames(const Trajectory& gt, const Trajectory& est, int delta_frames,
+                           double max_dt = 0.02);
+RpeResult computeRpeSeconds(const Trajectory& gt, const Trajectory& est, double delta_seconds,
+                            double max_dt = 0.02);
+
+}  // namespace ply_slam

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "ply_slam/features/frame_features.h"
+#include "ply_slam/map/map_point.h"
+
+namespace ply_slam {
+
+// A frame kept in the map: its features, pose and the landmarks it observes.
+struct KeyFrame {
+  long id = 0;
+  long frame_id = 0;
+  double stamp = 0.0;
+  Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
+  FrameFeatures features;
+  std::vector<std::shared_ptr<MapPoint>> map_points;  // per keypoint, may be null
+  std::map<KeyFrame*, int> covisibility;              // keyframe -> shared map points
+
+  Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }
+  int trackedPoints(int min_observations = 1) const;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "ply_slam/map/key_frame.h"
+#include "ply_slam/map/map_point.h"
+
+namespace ply_slam {
+
+// The sparse map: keyframes and point landmarks. Containers are guarded by a mutex so the
+// mapping side can read while tracking inserts.
+class Map {
+ public:
+  std::shared_ptr<KeyFrame> addKeyFrame(std::shared_ptr<KeyFrame> keyframe);
+  std::shared_ptr<MapPoint> createMapPoint(const Eigen::Vector3d& position,
+                                           const cv::Mat& descriptor, long keyframe_id);
+  // Links keypoint `index` of `keyframe` to `point` and updates covisibility.
+  void addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point);
+  // Drops points marked bad from the container (keyframes keep null-safe shared_ptrs).
+  size_t removeBadPoints();
+
+  std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;
+  std::vector<std::shared_ptr<MapPoint>> mapPoints() const;
+  size_t numKeyFrames() const;
+  size_t numMapPoints() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::shared_ptr<KeyFrame>> keyframes_;
+  std::vector<std::shared_ptr<MapPoint>> points_;
+  long next_point_id_ = 0;
+  long next_keyframe_id_ = 0;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/features/orb_extractor.h"
+#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/map/map.h"
+#include "ply_slam/tracking/tracker.h"
+
+namespace ply_slam {
+
+// Milliseconds spent on one frame, per stage.
+struct FrameTiming {
+  double features_ms = 0.0;  // grey conversion, ORB, undistortion, depth lookup
+  double tracking_ms = 0.0;  // matching, pose optimisation, keyframe insertion
+  double total_ms = 0.0;
+};
+
+struct FrameResult {
+  long frame_id = 0;
+  double stamp = 0.0;
+  TrackingResult tracking;
+  FrameTiming timing;
+};
+
+// A frame the system cannot use (empty, wrong encoding or size, stamp not increasing).
+// The system's state is unchanged when this is thrown.
+class InvalidFrame : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The whole pipeline in one process, frame by frame. Used by the offline tools and tests.
+class System {
+ public:
+  explicit System(const SystemConfig& config);
+
+  // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
+  FrameResult process(const RgbdImages& images);
+
+  const Trajectory& cameraTrajectory() const { return camera_trajectory_; }  // tracked frames
+  Trajectory keyFrameTrajectory() const;
+  const Map& map() const { return map_; }
+  const SystemConfig& config() const { return config_; }
+
+ private:
+  void validate(const RgbdImages& images) const;
+
+  // Camera motion between the rgb and the depth exposure, from the recent velocity.
+  const Eigen::Isometry3d* predictDepthMotion(const RgbdImages& images);
+
+  SystemConfig config_;
+  OrbExtractor extractor_;
+  Map map_;
+  Tracker tracker_;
+  long next_frame_id_ = 0;
+  double last_stamp_ = -1.0;
+  Trajectory camera_trajectory_;
+  bool has_velocity_ = false;
+  double last_tracked_stamp_ = -1.0;
+  Eigen::Vector3d angular_velocity_, linear_velocity_;  // of T_cw, per second
+  Eigen::Isometry3d T_depth_rgb_;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+#include "ply_slam/features/frame_features.h"
+#include "ply_slam/map/map_point.h"
+
+namespace ply_slam {
+
+// The frame being tracked: features, pose estimate and the landmark matched to each feature.
+struct Frame {
+  long id = 0;
+  double stamp = 0.0;
+  FrameFeatures features;
+  std::vector<std::shared_ptr<MapPoint>> map_points;  // per keypoint, may be null
+  std::vector<bool> outlier;                          // per keypoint, set by pose optimisation
+  Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
+
+  Frame() = default;
+  Frame(long frame_id, double frame_stamp, FrameFeatures frame_features)
+      : id(frame_id),
+        stamp(frame_stamp),
+        features(std::move(frame_features)),
+        map_points(features.size()),
+        outlier(features.size(), false) {}
+
+  Eigen::Vector3d cameraCentre() const { return T_cw.inverse().translation(); }
+  int numMatches() const;
+  void clearMatches();
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/tracking/frame.h"
+
+namespace ply_slam {
+
+// Hamming distance between two 256-bit ORB descriptors (rows of CV_8U, 32 bytes).
+int descriptorDistance(const cv::Mat& a, const cv::Mat& b);
+
+struct ProjectionMatchParams {
+  double radius_px = 15.0;  // search radius at level 0; scaled by the level's scale
+  int max_distance = 60;    // Hamming
+  double nn_ratio = 0.9;    // best < ratio * second best
+  double depth_gate = 0.1;  // relative depth disagreement allowed (plus 5 cm)
+};
+
+// Matches landmarks to the frame's features by projecting them with frame.T_cw and searching
+// a window around the projection. `levels` (optional, parallel to `points`) fixes the
+// expected pyramid level of each point; otherwise the level is predicted from distance.
+// Features that already hold a landmark are left alone. Returns the number of new matches.
+class ProjectionMatcher {
+ public:
+  ProjectionMatcher(const PinholeCamera& camera, double log_scale, int num_levels)
+      : camera_(camera), log_scale_(log_scale), num_levels_(num_levels) {}
+
+  int match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
+            const std::vector<int>* levels, const ProjectionMatchParams& params) const;
+
+ private:
+  const PinholeCamera& camera_;
+  double log_scale_;
+  int num_levels_;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/map/map.h"
+#include "ply_slam/tracking/frame.h"
+#include "ply_slam/tracking/pose_optimizer.h"
+#include "ply_slam/tracking/projection_matcher.h"
+
+namespace ply_slam {
+
+enum class TrackingState { kNotInitialised, kOk, kLost };
+const char* toString(TrackingState state);
+
+struct TrackingResult {
+  TrackingState state = TrackingState::kNotInitialised;
+  Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
+  int inliers = 0;
+  bool new_keyframe = false;
+  std::string method;  // how the pose was found: init, motion, pnp, reloc
+};
+
+// Frame-to-local-map tracking of RGB-D frames: constant-velocity prediction and projection
+// matching, PnP-RANSAC when that fails, Ceres pose optimisation, local-map refinement,
+// keyframe decision and relocalisation against keyframes after a loss.
+class Tracker {
+ public:
+  Tracker(const SystemConfig& config, Map& map, const std::vector<double>& scales);
+
+  TrackingResult track(Frame& frame);
+  TrackingState state() const { return state_; }
+
+ private:
+  bool initialise(Frame& frame);
+  bool trackWithMotionModel(Frame& frame);
+  bool trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates);
+  bool relocalise(Frame& frame);
+  int trackLocalMap(Frame& frame);
+  void updateLocalMap(const Frame& frame);
+  int optimizePose(Frame& frame);
+  bool needKeyFrame(const Frame& frame, int inliers) const;
+  void createKeyFrame(Frame& frame);
+  void updatePointStatistics(Frame& frame);
+
+  const SystemConfig config_;
+  Map& map_;
+  std::vector<double> scales_;
+  PoseOptimizer optimizer_;
+  ProjectionMatcher matcher_;
+
+  TrackingState state_ = TrackingState::kNotInitialised;
+  std::unique_ptr<Frame> last_frame_;
+  Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cw(k) * T_cw(k-1)^-1
+  bool has_velocity_ = false;
+  std::shared_ptr<KeyFrame> last_keyframe_;
+  std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
+  std::vector<std::shared_ptr<MapPoint>> local_points_;
+};
+
+}  // namespace ply_slam

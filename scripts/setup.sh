@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Shared set-up, sourced by demo.sh, test.sh and benchmark.sh: installs the Debian
+# packages that are missing (silent when all are there), then creates or refreshes the
+# catkin workspace build/ws with this repository as its package and builds it (Release, -j2).
+set -euo pipefail
+
+PLY_SLAM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+PLY_SLAM_WS="${PLY_SLAM_ROOT}/build/ws"
+PLY_SLAM_BIN="${PLY_SLAM_WS}/devel/lib/ply_slam"
+
+PLY_SLAM_PACKAGES=(
+  build-essential cmake catkin python3-catkin-pkg
+  libopencv-dev libopencv-contrib-dev libceres-dev libeigen3-dev libyaml-cpp-dev
+  libgtest-dev googletest opencv-doc
+)
+
+ply_slam_install_packages() {
+  local missing=()
+  for p in "${PLY_SLAM_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "[setup] installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+ply_slam_build() {
+  mkdir -p "${PLY_SLAM_WS}/src"
+  ln -sfn "${PLY_SLAM_ROOT}" "${PLY_SLAM_WS}/src/ply_slam"
+  (cd "${PLY_SLAM_WS}" &&
+     catkin_make -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" \
+       >"${PLY_SLAM_WS}/build.log" 2>&1) || {
+    tail -n 60 "${PLY_SLAM_WS}/build.log"
+    echo "[setup] build failed; full log: ${PLY_SLAM_WS}/build.log" >&2
+    return 1
+  }
+}
+
+# The shared data and models live beside the repository (never inside it).
+PLY_SLAM_SHARED="${PLY_SLAM_SHARED:-$(cd "${PLY_SLAM_ROOT}/.." && pwd)/shared}"
+export PLY_SLAM_SHARED

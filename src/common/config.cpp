@@ -1,0 +1,151 @@
+#include "ply_slam/common/config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+#include <sstream>
+
+namespace ply_slam {
+namespace {
+
+// Reads one YAML map section; remembers which keys were read so that misspelt keys are
+// reported instead of silently falling back to defaults.
+class Section {
+ public:
+  Section(const YAML::Node& node, std::string file, std::string name)
+      : node_(node), file_(std::move(file)), name_(std::move(name)) {
+    if (node_ && !node_.IsMap())
+      throw ConfigError("config " + file_ + ": " + name_ + " must be a map of keys");
+  }
+
+  template <typename T>
+  void read(const std::string& key, T& value, bool required = false) {
+    used_.insert(key);
+    const YAML::Node v = node_ ? node_[key] : YAML::Node();
+    if (!v) {
+      if (required) fail(key, "is required");
+      return;
+    }
+    try {
+      value = v.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(key, "has the wrong type (value '" + YAML::Dump(v) + "')");
+    }
+  }
+
+  template <typename T>
+  void readPositive(const std::string& key, T& value, bool required = false) {
+    read(key, value, required);
+    if (!(value > T(0))) fail(key, "must be > 0");
+  }
+
+  Section child(const std::string& key) {
+    used_.insert(key);
+    return Section(node_ ? node_[key] : YAML::Node(), file_, path(key));
+  }
+
+  // Every key present in the file must have been read.
+  void rejectUnknownKeys() const {
+    if (!node_) return;
+    for (const auto& kv : node_) {
+      const auto key = kv.first.as<std::string>();
+      if (!used_.count(key)) fail(key, "is not a known key");
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw ConfigError("config " + file_ + ": " + path(key) + " " + what);
+  }
+
+  std::string path(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
+
+ private:
+  YAML::Node node_;
+  std::string file_, name_;
+  std::set<std::string> used_;
+};
+
+void readCamera(Section s, PinholeCamera& c) {
+  s.readPositive("fx", c.fx, true);
+  s.readPositive("fy", c.fy, true);
+  s.readPositive("cx", c.cx, true);
+  s.readPositive("cy", c.cy, true);
+  s.readPositive("width", c.width, true);
+  s.readPositive("height", c.height, true);
+  std::vector<double> d;
+  s.read("distortion", d);
+  if (!d.empty() && d.size() != 4 && d.size() != 5)
+    s.fail("distortion", "needs 4 or 5 coefficients (k1 k2 p1 p2 [k3])");
+  if (!d.empty()) c.distortion = cv::Mat(d, true).reshape(1, 1);
+  s.readPositive("depth_factor", c.depth_factor);
+  s.readPositive("min_depth", c.min_depth);
+  s.readPositive("max_depth", c.max_depth);
+  if (c.max_depth <= c.min_depth) s.fail("max_depth", "must be > min_depth");
+  Section n = s.child("depth_noise");
+  n.read("alpha", c.depth_noise.alpha);
+  n.read("beta", c.depth_noise.beta);
+  n.read("gamma", c.depth_noise.gamma);
+  n.rejectUnknownKeys();
+  if (c.depth_noise.variance(c.min_depth) <= 0 || c.depth_noise.variance(c.max_depth) <= 0)
+    n.fail("alpha",
+           "with beta and gamma must give a positive variance over [min_depth, max_depth]");
+  s.rejectUnknownKeys();
+}
+
+void readOrb(Section s, OrbParams& o) {
+  s.readPositive("num_features", o.num_features);
+  s.readPositive("num_levels", o.num_levels);
+  s.readPositive("scale_factor", o.scale_factor);
+  if (o.scale_factor <= 1.0) s.fail("scale_factor", "must be > 1");
+  s.readPositive("fast_threshold", o.fast_threshold);
+  s.readPositive("min_fast_threshold", o.min_fast_threshold);
+  s.readPositive("grid_cell_size", o.grid_cell_size);
+  s.readPositive("edge_threshold", o.edge_threshold);
+  s.rejectUnknownKeys();
+}
+
+void readTracking(Section s, TrackingParams& t) {
+  s.readPositive("search_radius_px", t.search_radius_px);
+  s.readPositive("max_descriptor_distance", t.max_descriptor_distance);
+  s.readPositive("nn_ratio", t.nn_ratio);
+  if (t.nn_ratio > 1.0) s.fail("nn_ratio", "must be <= 1");
+  s.readPositive("min_tracked_points", t.min_tracked_points);
+  s.readPositive("local_map_keyframes", t.local_map_keyframes);
+  s.readPositive("huber_pixels", t.huber_pixels);
+  s.readPositive("chi2_outlier", t.chi2_outlier);
+  s.readPositive("optimisation_rounds", t.optimisation_rounds);
+  s.readPositive("keyframe_min_ratio", t.keyframe_min_ratio);
+  s.readPositive("keyframe_max_frames", t.keyframe_max_frames);
+  s.readPositive("keyframe_translation", t.keyframe_translation);
+  s.readPositive("keyframe_rotation_deg", t.keyframe_rotation_deg);
+  s.readPositive("pnp_iterations", t.pnp_iterations);
+  s.readPositive("pnp_reprojection_px", t.pnp_reprojection_px);
+  s.readPositive("max_point_depth", t.max_point_depth);
+  s.rejectUnknownKeys();
+}
+
+}  // namespace
+
+SystemConfig loadConfig(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError("config " + path + ": cannot open the file");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config " + path + ": not valid YAML: " + e.what());
+  }
+  if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
+
+  SystemConfig config;
+  config.source_path = path;
+  Section top(root, path, "");
+  if (!root["camera"]) top.fail("camera", "section is required");
+  readCamera(top.child("camera"), config.camera);
+  readOrb(top.child("orb"), config.orb);
+  readTracking(top.child("tracking"), config.tracking);
+  top.rejectUnknownKeys();
+  return config;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,102 @@
+#include "ply_slam/features/frame_features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+
+#include "ply_slam/features/orb_extractor.h"
+
+namespace ply_slam {
+
+namespace {
+
+float depthAt(const cv::Mat& depth_m, const PinholeCamera& camera, const cv::Point2f& raw) {
+  const int u = cvRound(raw.x), v = cvRound(raw.y);
+  if (u < 0 || v < 0 || u >= depth_m.cols || v >= depth_m.rows) return 0.f;
+  const float d = depth_m.at<float>(v, u);
+  return std::isfinite(d) && camera.validDepth(d) ? d : 0.f;
+}
+
+// Depth of the feature at rgb pixel `raw` in the rgb camera's frame. The depth image is
+// registered to the raw rgb image but taken at another time; when the camera moved by
+// T_depth_rgb in between, the feature's point is looked up where it was at depth time.
+float lookupDepth(const cv::Mat& depth_m, const PinholeCamera& camera, const cv::Point2f& raw,
+                  const Eigen::Vector2d& undistorted, const Eigen::Isometry3d* T_depth_rgb) {
+  float z = depthAt(depth_m, camera, raw);
+  if (!T_depth_rgb || z <= 0.f) return z;
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    const Eigen::Vector3d p_depth = *T_depth_rgb * camera.backProject(undistorted, z);
+    const Eigen::Vector2d moved = camera.project(p_depth);
+    // The shift is a few pixels: undistortion changes it negligibly, so it is applied raw.
+    const cv::Point2f shifted(static_cast<float>(raw.x + moved.x() - undistorted.x()),
+                              static_cast<float>(raw.y + moved.y() - undistorted.y()));
+    const float z_depth = depthAt(depth_m, camera, shifted);
+    if (z_depth <= 0.f) return 0.f;
+    const Eigen::Vector3d p_rgb = T_depth_rgb->inverse() * camera.backProject(moved, z_depth);
+    z = static_cast<float>(p_rgb.z());
+  }
+  return camera.validDepth(z) ? z : 0.f;
+}
+
+}  // namespace
+
+FrameFeatures FrameFeatures::extract(const cv::Mat& gray, const cv::Mat& depth_m,
+                                     const PinholeCamera& camera, const OrbExtractor& extractor,
+                                     const Eigen::Isometry3d* T_depth_rgb) {
+  FrameFeatures f;
+  f.width = gray.cols;
+  f.height = gray.rows;
+  f.scales = &extractor.scales();
+  extractor.extract(gray, f.keypoints, f.descriptors);
+
+  const size_t n = f.keypoints.size();
+  f.undistorted.resize(n);
+  f.depth.assign(n, 0.f);
+  std::vector<cv::Point2f> raw(n), rectified;
+  for (size_t i = 0; i < n; ++i) raw[i] = f.keypoints[i].pt;
+  if (camera.hasDistortion() && n > 0) {
+    cv::undistortPoints(raw, rectified, camera.K(), camera.distortion, cv::noArray(), camera.K());
+  } else {
+    rectified = raw;
+  }
+  for (size_t i = 0; i < n; ++i) {
+    f.undistorted[i] = Eigen::Vector2d(rectified[i].x, rectified[i].y);
+    f.depth[i] = lookupDepth(depth_m, camera, raw[i], f.undistorted[i], T_depth_rgb);
+  }
+  f.buildGrid();
+  return f;
+}
+
+void FrameFeatures::buildGrid() {
+  grid_cols_ = std::max(1, (width + kCellSize - 1) / kCellSize);
+  grid_rows_ = std::max(1, (height + kCellSize - 1) / kCellSize);
+  grid_.assign(grid_cols_ * grid_rows_, {});
+  for (size_t i = 0; i < undistorted.size(); ++i) {
+    const int c = static_cast<int>(std::floor(undistorted[i].x() / kCellSize));
+    const int r = static_cast<int>(std::floor(undistorted[i].y() / kCellSize));
+    if (c < 0 || r < 0 || c >= grid_cols_ || r >= grid_rows_) continue;  // undistorted outside
+    grid_[r * grid_cols_ + c].push_back(i);
+  }
+}
+
+std::vector<size_t> FrameFeatures::featuresInArea(double u, double v, double radius, int min_level,
+                                                  int max_level) const {
+  std::vector<size_t> out;
+  const int c0 = std::max(0, static_cast<int>(std::floor((u - radius) / kCellSize)));
+  const int c1 = std::min(grid_cols_ - 1, static_cast<int>(std::floor((u + radius) / kCellSize)));
+  const int r0 = std::max(0, static_cast<int>(std::floor((v - radius) / kCellSize)));
+  const int r1 = std::min(grid_rows_ - 1, static_cast<int>(std::floor((v + radius) / kCellSize)));
+  const double r2 = radius * radius;
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      for (size_t i : grid_[r * grid_cols_ + c]) {
+        const int level = keypoints[i].octave;
+        if (level < min_level || level > max_level) continue;
+        if ((undistorted[i] - Eigen::Vector2d(u, v)).squaredNorm() <= r2) out.push_back(i);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,66 @@
+#include "ply_slam/map/map.h"
+
+#include <algorithm>
+
+namespace ply_slam {
+
+std::shared_ptr<KeyFrame> Map::addKeyFrame(std::shared_ptr<KeyFrame> keyframe) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keyframe->id = next_keyframe_id_++;
+  keyframes_.push_back(keyframe);
+  return keyframe;
+}
+
+std::shared_ptr<MapPoint> Map::createMapPoint(const Eigen::Vector3d& position,
+                                              const cv::Mat& descriptor, long keyframe_id) {
+  auto point = std::make_shared<MapPoint>();
+  point->position = position;
+  point->descriptor = descriptor.clone();
+  point->first_keyframe_id = keyframe_id;
+  std::lock_guard<std::mutex> lock(mutex_);
+  point->id = next_point_id_++;
+  points_.push_back(point);
+  return point;
+}
+
+void Map::addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keyframe.map_points[index] = point;
+  for (KeyFrame* other : point->observers) {
+    if (other == &keyframe) continue;
+    ++keyframe.covisibility[other];
+    ++other->covisibility[&keyframe];
+  }
+  point->observers.push_back(&keyframe);
+}
+
+size_t Map::removeBadPoints() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const size_t before = points_.size();
+  points_.erase(std::remove_if(points_.begin(), points_.end(),
+                               [](const std::shared_ptr<MapPoint>& p) { return p->bad; }),
+                points_.end());
+  return before - points_.size();
+}
+
+std::vector<std::shared_ptr<KeyFrame>> Map::keyFrames() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return keyframes_;
+}
+
+std::vector<std::shared_ptr<MapPoint>> Map::mapPoints() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return points_;
+}
+
+size_t Map::numKeyFrames() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return keyframes_.size();
+}
+
+size_t Map::numMapPoints() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return points_.size();
+}
+
+}  // namespace ply_slam

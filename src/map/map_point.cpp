@@ -1,0 +1,18 @@
+#include "ply_slam/map/map_point.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ply_slam {
+
+int MapPoint::predictLevel(double distance, double log_scale, int num_levels) const {
+  const int level = static_cast<int>(std::ceil(std::log(max_distance / distance) / log_scale));
+  return std::clamp(level, 0, num_levels - 1);
+}
+
+void MapPoint::fuse(const Eigen::Vector3d& measured, double weight) {
+  position = (position * position_weight + measured * weight) / (position_weight + weight);
+  position_weight += weight;
+}
+
+}  // namespace ply_slam

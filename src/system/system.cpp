@@ -1,0 +1,86 @@
+#include "ply_slam/system/system.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include "ply_slam/common/stopwatch.h"
+
+namespace ply_slam {
+
+System::System(const SystemConfig& config)
+    : config_(config), extractor_(config.orb), tracker_(config_, map_, extractor_.scales()) {}
+
+void System::validate(const RgbdImages& images) const {
+  const auto& cam = config_.camera;
+  if (images.rgb.empty()) throw InvalidFrame("empty RGB image");
+  if (images.depth.empty()) throw InvalidFrame("empty depth image");
+  if (images.rgb.type() != CV_8UC3)
+    throw InvalidFrame("RGB image must be 8-bit, 3 channels (got type " +
+                       cv::typeToString(images.rgb.type()) + ")");
+  if (images.depth.type() != CV_32FC1)
+    throw InvalidFrame("depth image must be 32FC1 in metres (got type " +
+                       cv::typeToString(images.depth.type()) + ")");
+  if (images.rgb.size() != images.depth.size()) throw InvalidFrame("RGB and depth sizes differ");
+  if (images.rgb.cols != cam.width || images.rgb.rows != cam.height)
+    throw InvalidFrame("image is " + std::to_string(images.rgb.cols) + "x" +
+                       std::to_string(images.rgb.rows) + " but the camera is configured for " +
+                       std::to_string(cam.width) + "x" + std::to_string(cam.height));
+  if (images.stamp <= last_stamp_)
+    throw InvalidFrame("stamp " + std::to_string(images.stamp) +
+                       " does not follow the previous frame's " + std::to_string(last_stamp_));
+}
+
+FrameResult System::process(const RgbdImages& images) {
+  validate(images);
+  last_stamp_ = images.stamp;
+
+  FrameResult result;
+  result.frame_id = next_frame_id_++;
+  result.stamp = images.stamp;
+  Stopwatch total;
+  cv::Mat gray;
+  cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+  Frame frame(result.frame_id, images.stamp,
+              FrameFeatures::extract(gray, images.depth, config_.camera, extractor_,
+                                     predictDepthMotion(images)));
+  result.timing.features_ms = total.elapsedMs();
+
+  Stopwatch tracking;
+  result.tracking = tracker_.track(frame);
+  result.timing.tracking_ms = tracking.elapsedMs();
+  result.timing.total_ms = total.elapsedMs();
+
+  const bool ok = result.tracking.state == TrackingState::kOk;
+  has_velocity_ = false;
+  if (ok && !camera_trajectory_.empty() && camera_trajectory_.back().stamp == last_tracked_stamp_) {
+    const double dt = images.stamp - last_tracked_stamp_;
+    const Eigen::Isometry3d step = result.tracking.T_cw * camera_trajectory_.back().T_wc;
+    const Eigen::AngleAxisd rotation(step.rotation());
+    angular_velocity_ = rotation.angle() * rotation.axis() / dt;
+    linear_velocity_ = step.translation() / dt;
+    has_velocity_ = dt > 0 && dt < 0.2;
+  }
+  if (ok) {
+    camera_trajectory_.push_back({images.stamp, result.tracking.T_cw.inverse()});
+    last_tracked_stamp_ = images.stamp;
+  }
+  return result;
+}
+
+const Eigen::Isometry3d* System::predictDepthMotion(const RgbdImages& images) {
+  if (!has_velocity_ || images.depth_stamp == 0.0) return nullptr;
+  const double dt = images.depth_stamp - images.stamp;
+  const Eigen::Vector3d w = angular_velocity_ * dt;
+  T_depth_rgb_ = Eigen::Isometry3d::Identity();
+  if (w.norm() > 1e-12)
+    T_depth_rgb_.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+  T_depth_rgb_.translation() = linear_velocity_ * dt;
+  return &T_depth_rgb_;
+}
+
+Trajectory System::keyFrameTrajectory() const {
+  Trajectory trajectory;
+  for (const auto& kf : map_.keyFrames()) trajectory.push_back({kf->stamp, kf->T_wc()});
+  return trajectory;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,197 @@
+// Baseline for side-by-side benchmarks: OpenCV contrib's dense RgbdOdometry (Steinbruecker
+// et al., "Real-Time Visual Odometry from Dense RGB-D Images") run frame to frame on a TUM
+// folder, with default parameters and only the camera matrix taken from our config.
+//
+//   ply_slam_rgbd_odometry --sequence DIR --config FILE --out TRAJ.txt [--timing-json F]
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <numeric>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/rgbd/depth.hpp>
+#include <string>
+#include <vector>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/tum_trajectory_file.h"
+
+namespace {
+
+struct Options {
+  std::string sequence;
+  std::string config;
+  std::string out;
+  std::string timing_json;
+};
+
+void printUsage(std::ostream& os) {
+  os << "usage: ply_slam_rgbd_odometry --sequence DIR --config FILE --out TRAJ.txt"
+        " [--timing-json FILE]\n"
+        "Runs OpenCV rgbd::RgbdOdometry (default parameters) frame to frame on a TUM folder\n"
+        "and writes the chained camera poses as a TUM trajectory.\n";
+}
+
+bool parseOptions(int argc, char** argv, Options* options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") {
+      printUsage(std::cout);
+      std::exit(0);
+    }
+    if (i + 1 >= argc) {
+      std::cerr << "ply_slam_rgbd_odometry: " << arg << " needs a value (or is unknown)\n";
+      return false;
+    }
+    const std::string value = argv[++i];
+    if (arg == "--sequence") {
+      options->sequence = value;
+    } else if (arg == "--config") {
+      options->config = value;
+    } else if (arg == "--out") {
+      options->out = value;
+    } else if (arg == "--timing-json") {
+      options->timing_json = value;
+    } else {
+      std::cerr << "ply_slam_rgbd_odometry: unknown option " << arg << "\n";
+      return false;
+    }
+  }
+  if (options->sequence.empty() || options->config.empty() || options->out.empty()) {
+    std::cerr << "ply_slam_rgbd_odometry: --sequence, --config and --out are required\n";
+    return false;
+  }
+  return true;
+}
+
+// The ground-truth pose nearest in time to `stamp`: starts the estimate in the gt frame so
+// the trajectory can be looked at next to it without alignment (ATE aligns anyway).
+Eigen::Isometry3d nearestPose(const ply_slam::Trajectory& trajectory, double stamp) {
+  auto best =
+      std::min_element(trajectory.begin(), trajectory.end(),
+                       [stamp](const ply_slam::StampedPose& a, const ply_slam::StampedPose& b) {
+                         return std::abs(a.stamp - stamp) < std::abs(b.stamp - stamp);
+                       });
+  return best == trajectory.end() ? Eigen::Isometry3d::Identity() : best->T_wc;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  if (values.size() % 2 == 1) return values[mid];
+  const double upper = values[mid];
+  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
+}
+
+int run(const Options& options) {
+  const ply_slam::SystemConfig config = ply_slam::loadConfig(options.config);
+  const ply_slam::PinholeCamera& camera = config.camera;
+  const ply_slam::TumSequence sequence(options.sequence);
+  if (sequence.unassociatedRgbFrames() > 0) {
+    std::cerr << "note: " << sequence.unassociatedRgbFrames()
+              << " rgb frames have no depth image and are skipped\n";
+  }
+
+  // Only the camera matrix is set; everything else stays at the module's defaults.
+  // Lens distortion is ignored: the dense method works on raw pixels.
+  const cv::Mat K =
+      (cv::Mat_<double>(3, 3) << camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  const cv::Ptr<cv::rgbd::RgbdOdometry> odometry = cv::rgbd::RgbdOdometry::create(K);
+
+  ply_slam::Trajectory trajectory;
+  trajectory.reserve(sequence.size());
+  std::vector<double> compute_ms;
+  int failures = 0;
+  cv::Ptr<cv::rgbd::OdometryFrame> previous;
+  Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
+
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    const ply_slam::RgbdImages images = sequence.load(i, camera.depth_factor);
+    cv::Mat gray;
+    cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+    // The module marks missing depth with NaN, not 0.
+    cv::Mat depth = images.depth.clone();
+    depth.setTo(std::numeric_limits<float>::quiet_NaN(), depth == 0.0f);
+
+    cv::Ptr<cv::rgbd::OdometryFrame> current = cv::rgbd::OdometryFrame::create(gray, depth);
+    if (!previous) {
+      if (sequence.hasGroundTruth()) T_wc = nearestPose(sequence.groundTruth(), images.stamp);
+    } else {
+      cv::Mat Rt;
+      // Each frame's pyramids are cached in its OdometryFrame and built once, so the
+      // timing is the real per-frame cost of the method, not twice it.
+      const auto start = std::chrono::steady_clock::now();
+      const bool ok = odometry->compute(current, previous, Rt);
+      const auto stop = std::chrono::steady_clock::now();
+      compute_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+      if (ok) {
+        // compute(src = current, dst = previous): p_previous = Rt * p_current, so Rt is
+        // T_previous_current and poses chain on the right.
+        Eigen::Matrix4d T_prev_cur;
+        cv::cv2eigen(Rt, T_prev_cur);
+        Eigen::Isometry3d step(T_prev_cur);
+        step.linear() = Eigen::Quaterniond(step.linear()).normalized().toRotationMatrix();
+        T_wc = T_wc * step;
+      } else {
+        ++failures;  // keep the last pose: a constant-position guess
+      }
+    }
+    previous = current;
+    ply_slam::StampedPose pose;
+    pose.stamp = images.stamp;
+    pose.T_wc = T_wc;
+    trajectory.push_back(pose);
+  }
+
+  const std::filesystem::path out_path(options.out);
+  if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
+  ply_slam::writeTumTrajectory(options.out, trajectory);
+
+  const double median_ms = median(compute_ms);
+  const double mean_ms = compute_ms.empty()
+                             ? 0.0
+                             : std::accumulate(compute_ms.begin(), compute_ms.end(), 0.0) /
+                                   static_cast<double>(compute_ms.size());
+  std::printf("RgbdOdometry: %zu frames, %d failed, odometry %.2f ms median, %.2f ms mean\n",
+              trajectory.size(), failures, median_ms, mean_ms);
+  std::printf("trajectory: %s\n", options.out.c_str());
+
+  if (!options.timing_json.empty()) {
+    const std::filesystem::path json_path(options.timing_json);
+    if (json_path.has_parent_path()) std::filesystem::create_directories(json_path.parent_path());
+    std::ofstream json(options.timing_json);
+    if (!json) throw std::runtime_error(options.timing_json + ": cannot write");
+    // Same key names as ply_slam_tum's summary.json so scripts read both alike.
+    json << "{\n  \"method\": \"opencv_rgbd_odometry\",\n  \"frames\": " << trajectory.size()
+         << ",\n  \"failures\": " << failures << ",\n  \"tracking_ms_median\": " << median_ms
+         << ",\n  \"tracking_ms_mean\": " << mean_ms << "\n}\n";
+    if (!json) throw std::runtime_error(options.timing_json + ": write failed");
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (!parseOptions(argc, argv, &options)) {
+    printUsage(std::cerr);
+    return 2;
+  }
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    std::cerr << "ply_slam_rgbd_odometry: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,75 @@
+#include "ply_slam/tracking/projection_matcher.h"
+
+#include <cmath>
+#include <limits>
+
+namespace ply_slam {
+
+int descriptorDistance(const cv::Mat& a, const cv::Mat& b) {
+  const uint64_t* pa = a.ptr<uint64_t>();
+  const uint64_t* pb = b.ptr<uint64_t>();
+  int distance = 0;
+  for (int i = 0; i < 4; ++i) distance += __builtin_popcountll(pa[i] ^ pb[i]);
+  return distance;
+}
+
+int ProjectionMatcher::match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
+                             const std::vector<int>* levels,
+                             const ProjectionMatchParams& params) const {
+  const FrameFeatures& f = frame.features;
+  const Eigen::Vector3d centre = frame.cameraCentre();
+  // Best distance given to each feature in this pass: a better landmark takes a feature over.
+  std::vector<int> assigned_distance(f.size(), std::numeric_limits<int>::max());
+  std::vector<bool> assigned_here(f.size(), false);
+  int matches = 0;
+
+  for (size_t k = 0; k < points.size(); ++k) {
+    const auto& point = points[k];
+    if (!point || point->bad) continue;
+    const Eigen::Vector3d pc = frame.T_cw * point->position;
+    if (pc.z() <= 0.05) continue;
+    const Eigen::Vector2d uv = camera_.project(pc);
+    if (!camera_.inImage(uv)) continue;
+
+    int level;
+    if (levels) {
+      level = (*levels)[k];
+    } else {
+      const Eigen::Vector3d ray = point->position - centre;
+      const double distance = ray.norm();
+      if (distance < 0.8 * point->min_distance || distance > 1.2 * point->max_distance) continue;
+      if (ray.dot(point->normal) < 0.5 * distance) continue;  // seen from > 60° off its normal
+      level = point->predictLevel(distance, log_scale_, num_levels_);
+    }
+    point->last_projected_frame = frame.id;
+    ++point->visible;
+
+    const double radius = params.radius_px * (*f.scales)[level];
+    int best = std::numeric_limits<int>::max(), second = best;
+    long best_index = -1;
+    for (size_t i : f.featuresInArea(uv.x(), uv.y(), radius, level - 1, level + 1)) {
+      if (frame.map_points[i] && !assigned_here[i]) continue;  // matched by an earlier stage
+      if (f.hasDepth(i) && std::abs(f.depth[i] - pc.z()) > params.depth_gate * pc.z() + 0.05)
+        continue;
+      const int d = descriptorDistance(point->descriptor, f.descriptors.row(static_cast<int>(i)));
+      if (d < best) {
+        second = best;
+        best = d;
+        best_index = static_cast<long>(i);
+      } else if (d < second) {
+        second = d;
+      }
+    }
+    if (best_index < 0 || best > params.max_distance) continue;
+    if (second != std::numeric_limits<int>::max() && best > params.nn_ratio * second) continue;
+    if (best >= assigned_distance[best_index]) continue;
+    if (!assigned_here[best_index]) ++matches;
+    assigned_distance[best_index] = best;
+    assigned_here[best_index] = true;
+    frame.map_points[best_index] = point;
+    frame.outlier[best_index] = false;
+  }
+  return matches;
+}
+
+}  // namespace ply_slam

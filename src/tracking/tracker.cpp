@@ -1,0 +1,334 @@
+#include "ply_slam/tracking/tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/features2d.hpp>
+
+namespace ply_slam {
+namespace {
+
+constexpr int kMinPnpMatches = 15;
+
+PoseOptimizerParams optimizerParams(const TrackingParams& t) {
+  PoseOptimizerParams p;
+  p.chi2_pixel = t.chi2_outlier;
+  p.chi2_depth = t.chi2_outlier + 1.824;  // 3-DoF 95 % (7.815) for the 2-DoF 5.991 default
+  p.rounds = t.optimisation_rounds;
+  return p;
+}
+
+double rotationAngleDeg(const Eigen::Isometry3d& T) {
+  return Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI;
+}
+
+}  // namespace
+
+const char* toString(TrackingState state) {
+  switch (state) {
+    case TrackingState::kNotInitialised:
+      return "not_initialised";
+    case TrackingState::kOk:
+      return "ok";
+    case TrackingState::kLost:
+      return "lost";
+  }
+  return "?";
+}
+
+Tracker::Tracker(const SystemConfig& config, Map& map, const std::vector<double>& scales)
+    : config_(config),
+      map_(map),
+      scales_(scales),
+      optimizer_(config.camera, optimizerParams(config.tracking)),
+      matcher_(config_.camera, std::log(config.orb.scale_factor), config.orb.num_levels) {}
+
+TrackingResult Tracker::track(Frame& frame) {
+  TrackingResult result;
+  if (state_ == TrackingState::kNotInitialised) {
+    if (initialise(frame)) {
+      result.method = "init";
+      result.new_keyframe = true;
+      result.inliers = frame.numMatches();
+    }
+  } else {
+    bool ok = false;
+    if (state_ == TrackingState::kOk) {
+      ok = trackWithMotionModel(frame);
+      result.method = "motion";
+      if (!ok) {
+        updateLocalMap(*last_frame_);
+        ok = trackWithPnp(frame, local_points_);
+        result.method = "pnp";
+      }
+    } else {
+      ok = relocalise(frame);
+      result.method = "reloc";
+    }
+    int inliers = 0;
+    if (ok) {
+      inliers = trackLocalMap(frame);
+      ok = inliers >= config_.tracking.min_tracked_points;
+    }
+    if (ok) {
+      has_velocity_ = state_ == TrackingState::kOk;
+      if (has_velocity_) velocity_ = frame.T_cw * last_frame_->T_cw.inverse();
+      state_ = TrackingState::kOk;
+      updatePointStatistics(frame);
+      result.inliers = inliers;
+      if (needKeyFrame(frame, inliers)) {
+        createKeyFrame(frame);
+        result.new_keyframe = true;
+      }
+    } else {
+      state_ = TrackingState::kLost;
+      has_velocity_ = false;
+    }
+  }
+  result.state = state_;
+  result.T_cw = frame.T_cw;
+  if (state_ == TrackingState::kOk) last_frame_ = std::make_unique<Frame>(frame);
+  return result;
+}
+
+bool Tracker::initialise(Frame& frame) {
+  int with_depth = 0;
+  for (size_t i = 0; i < frame.features.size(); ++i) with_depth += frame.features.hasDepth(i);
+  if (with_depth < 2 * config_.tracking.min_tracked_points) return false;
+  frame.T_cw = Eigen::Isometry3d::Identity();
+  createKeyFrame(frame);
+  state_ = TrackingState::kOk;
+  has_velocity_ = false;
+  return true;
+}
+
+bool Tracker::trackWithMotionModel(Frame& frame) {
+  frame.T_cw = has_velocity_ ? velocity_ * last_frame_->T_cw : last_frame_->T_cw;
+  // The last frame's landmarks, searched at the level they were seen at.
+  std::vector<std::shared_ptr<MapPoint>> points;
+  std::vector<int> levels;
+  for (size_t i = 0; i < last_frame_->map_points.size(); ++i) {
+    if (!last_frame_->map_points[i] || last_frame_->outlier[i]) continue;
+    points.push_back(last_frame_->map_points[i]);
+    levels.push_back(last_frame_->features.level(i));
+  }
+  ProjectionMatchParams params;
+  params.radius_px = config_.tracking.search_radius_px;
+  params.max_distance = config_.tracking.max_descriptor_distance;
+  params.nn_ratio = config_.tracking.nn_ratio;
+  frame.clearMatches();
+  int matches = matcher_.match(frame, points, &levels, params);
+  if (matches < 2 * config_.tracking.min_tracked_points) {
+    frame.clearMatches();
+    params.radius_px *= 2;  // fast motion: a wider window
+    matches = matcher_.match(frame, points, &levels, params);
+  }
+  if (matches < config_.tracking.min_tracked_points) return false;
+  return optimizePose(frame) >= config_.tracking.min_tracked_points;
+}
+
+bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates) {
+  std::vector<std::shared_ptr<MapPoint>> points;
+  cv::Mat descriptors;
+  for (const auto& p : candidates) {
+    if (!p || p->bad) continue;
+    points.push_back(p);
+    descriptors.push_back(p->descriptor);
+  }
+  if (static_cast<int>(points.size()) < kMinPnpMatches || frame.features.size() == 0) return false;
+
+  cv::BFMatcher bf(cv::NORM_HAMMING);
+  std::vector<std::vector<cv::DMatch>> knn;
+  bf.knnMatch(frame.features.descriptors, descriptors, knn, 2);
+  std::vector<cv::Point3f> object;
+  std::vector<cv::Point2f> image;
+  std::vector<std::pair<size_t, size_t>> pairs;  // (feature, point)
+  for (const auto& m : knn) {
+    if (m.empty() || m[0].distance > config_.tracking.max_descriptor_distance) continue;
+    if (m.size() > 1 && m[0].distance > 0.8 * m[1].distance) continue;
+    const auto& p = points[m[0].trainIdx]->position;
+    const auto& uv = frame.features.undistorted[m[0].queryIdx];
+    object.emplace_back(p.x(), p.y(), p.z());
+    image.emplace_back(uv.x(), uv.y());
+    pairs.emplace_back(m[0].queryIdx, m[0].trainIdx);
+  }
+  if (static_cast<int>(object.size()) < kMinPnpMatches) return false;
+
+  cv::Mat rvec, tvec;
+  std::vector<int> inliers;
+  const bool solved =
+      cv::solvePnPRansac(object, image, cv::Mat(config_.camera.K()), cv::noArray(), rvec, tvec,
+                         false, config_.tracking.pnp_iterations,
+                         config_.tracking.pnp_reprojection_px, 0.99, inliers, cv::SOLVEPNP_EPNP);
+  if (!solved || static_cast<int>(inliers.size()) < kMinPnpMatches) return false;
+
+  cv::Mat R;
+  cv::Rodrigues(rvec, R);
+  Eigen::Matrix3d R_eigen;
+  Eigen::Vector3d t_eigen;
+  cv::cv2eigen(R, R_eigen);
+  cv::cv2eigen(tvec, t_eigen);
+  frame.T_cw.linear() = R_eigen;
+  frame.T_cw.translation() = t_eigen;
+  frame.clearMatches();
+  for (int k : inliers) frame.map_points[pairs[k].first] = points[pairs[k].second];
+  return optimizePose(frame) >= kMinPnpMatches;
+}
+
+bool Tracker::relocalise(Frame& frame) {
+  // Newest keyframes first: after a short loss the camera is usually still near them.
+  auto keyframes = map_.keyFrames();
+  for (auto it = keyframes.rbegin(); it != keyframes.rend(); ++it) {
+    if (trackWithPnp(frame, (*it)->map_points)) {
+      last_keyframe_ = *it;
+      return true;
+    }
+  }
+  return false;
+}
+
+void Tracker::updateLocalMap(const Frame& frame) {
+  // Keyframes that share landmarks with the frame, most shared first, plus the newest one.
+  std::map<KeyFrame*, int> shared;
+  for (size_t i = 0; i < frame.map_points.size(); ++i) {
+    const auto& p = frame.map_points[i];
+    if (!p || frame.outlier[i] || p->bad) continue;
+    for (KeyFrame* kf : p->observers) ++shared[kf];
+  }
+  std::vector<std::pair<int, KeyFrame*>> ranked;
+  for (const auto& [kf, n] : shared) ranked.emplace_back(n, kf);
+  std::sort(ranked.begin(), ranked.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+
+  std::vector<KeyFrame*> chosen;
+  for (const auto& [n, kf] : ranked) {
+    if (static_cast<int>(chosen.size()) >= config_.tracking.local_map_keyframes) break;
+    chosen.push_back(kf);
+  }
+  if (last_keyframe_ &&
+      std::find(chosen.begin(), chosen.end(), last_keyframe_.get()) == chosen.end())
+    chosen.push_back(last_keyframe_.get());
+
+  local_points_.clear();
+  for (KeyFrame* kf : chosen) {
+    for (const auto& p : kf->map_points) {
+      if (!p || p->bad || p->local_map_frame == frame.id) continue;
+      p->local_map_frame = frame.id;
+      local_points_.push_back(p);
+    }
+  }
+}
+
+int Tracker::trackLocalMap(Frame& frame) {
+  updateLocalMap(frame);
+  ProjectionMatchParams params;
+  params.radius_px = config_.tracking.search_radius_px / 3.0;  // the pose is already refined
+  params.max_distance = config_.tracking.max_descriptor_distance;
+  params.nn_ratio = config_.tracking.nn_ratio;
+  // Outliers of the first estimate may be matched again to a better landmark.
+  for (size_t i = 0; i < frame.map_points.size(); ++i)
+    if (frame.outlier[i]) frame.map_points[i] = nullptr;
+  std::vector<std::shared_ptr<MapPoint>> candidates;
+  candidates.reserve(local_points_.size());
+  for (const auto& p : local_points_)
+    if (p->last_projected_frame != frame.id) candidates.push_back(p);
+  matcher_.match(frame, candidates, nullptr, params);
+  return optimizePose(frame);
+}
+
+int Tracker::optimizePose(Frame& frame) {
+  std::vector<PointObservation> observations;
+  std::vector<size_t> index;
+  const auto& f = frame.features;
+  for (size_t i = 0; i < frame.map_points.size(); ++i) {
+    if (!frame.map_points[i]) continue;
+    PointObservation o;
+    o.world = frame.map_points[i]->position;
+    o.pixel = f.undistorted[i];
+    o.pixel_sigma = f.scale(i);
+    if (f.hasDepth(i)) {
+      o.depth = f.depth[i];
+      o.depth_sigma = std::sqrt(config_.camera.depth_noise.variance(o.depth));
+    }
+    observations.push_back(o);
+    index.push_back(i);
+  }
+  std::vector<bool> inlier;
+  const int n = optimizer_.optimize(observations, frame.T_cw, inlier);
+  for (size_t k = 0; k < index.size(); ++k) frame.outlier[index[k]] = !inlier[k];
+  return n;
+}
+
+void Tracker::updatePointStatistics(Frame& frame) {
+  for (size_t i = 0; i < frame.map_points.size(); ++i) {
+    auto& p = frame.map_points[i];
+    if (!p) continue;
+    if (frame.outlier[i]) {
+      p = nullptr;
+      continue;
+    }
+    ++p->found;
+  }
+  // Landmarks that are in view but rarely matched are unreliable: retire them.
+  for (const auto& p : local_points_)
+    if (p->visible >= 10 && p->foundRatio() < 0.25) p->bad = true;
+}
+
+bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
+  if (!last_keyframe_) return true;
+  const auto& t = config_.tracking;
+  if (frame.id - last_keyframe_->frame_id >= t.keyframe_max_frames) return true;
+  // Landmarks seen from two keyframes are the established ones the frame should keep seeing.
+  if (inliers < t.keyframe_min_ratio * last_keyframe_->trackedPoints(2)) return true;
+  const Eigen::Isometry3d motion = last_keyframe_->T_cw * frame.T_cw.inverse();
+  return motion.translation().norm() > t.keyframe_translation ||
+         rotationAngleDeg(motion) > t.keyframe_rotation_deg;
+}
+
+void Tracker::createKeyFrame(Frame& frame) {
+  auto kf = std::make_shared<KeyFrame>();
+  kf->frame_id = frame.id;
+  kf->stamp = frame.stamp;
+  kf->T_cw = frame.T_cw;
+  kf->features = frame.features;
+  kf->map_points.resize(frame.features.size());
+  map_.addKeyFrame(kf);
+
+  const auto& f = frame.features;
+  const auto& cam = config_.camera;
+  const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
+  const Eigen::Vector3d centre = T_wc.translation();
+  const double last_scale = scales_.back();
+  for (size_t i = 0; i < f.size(); ++i) {
+    auto& p = frame.map_points[i];
+    const bool has_depth = f.hasDepth(i) && f.depth[i] <= config_.tracking.max_point_depth;
+    if (p && !frame.outlier[i]) {
+      map_.addObservation(*kf, i, p);
+      if (has_depth) {
+        // Average the landmark with this keyframe's depth measurement.
+        const double z = f.depth[i];
+        const double lateral = z * f.scale(i) / cam.fx;
+        p->fuse(T_wc * cam.backProject(f.undistorted[i], z),
+                1.0 / (cam.depth_noise.variance(z) + lateral * lateral));
+      }
+      continue;
+    }
+    if (!has_depth) continue;
+    const double z = f.depth[i];
+    const Eigen::Vector3d world = T_wc * cam.backProject(f.undistorted[i], z);
+    auto point = map_.createMapPoint(world, f.descriptors.row(static_cast<int>(i)), kf->id);
+    const Eigen::Vector3d ray = world - centre;
+    point->normal = ray.normalized();
+    point->max_distance = ray.norm() * f.scale(i);
+    point->min_distance = point->max_distance / last_scale;
+    const double lateral = z * f.scale(i) / cam.fx;
+    point->position_weight = 1.0 / (cam.depth_noise.variance(z) + lateral * lateral);
+    map_.addObservation(*kf, i, point);
+    p = point;
+    frame.outlier[i] = false;
+  }
+  last_keyframe_ = kf;
+}
+
+}  // namespace ply_slam
