@@ -111,7 +111,6 @@ void readTracking(Section s, TrackingParams& t) {
   if (t.nn_ratio > 1.0) s.fail("nn_ratio", "must be <= 1");
   s.readPositive("min_tracked_points", t.min_tracked_points);
   s.readPositive("local_map_keyframes", t.local_map_keyframes);
-  s.readPositive("huber_pixels", t.huber_pixels);
   s.readPositive("chi2_outlier", t.chi2_outlier);
   s.readPositive("optimisation_rounds", t.optimisation_rounds);
   s.readPositive("keyframe_min_ratio", t.keyframe_min_ratio);

@@ -26,12 +26,29 @@ std::shared_ptr<MapPoint> Map::createMapPoint(const Eigen::Vector3d& position,
 void Map::addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point) {
   std::lock_guard<std::mutex> lock(mutex_);
   keyframe.map_points[index] = point;
-  for (KeyFrame* other : point->observers) {
-    if (other == &keyframe) continue;
-    ++keyframe.covisibility[other];
-    ++other->covisibility[&keyframe];
+  for (const auto& o : point->observers) {
+    if (o.keyframe == &keyframe) continue;
+    ++keyframe.covisibility[o.keyframe];
+    ++o.keyframe->covisibility[&keyframe];
   }
-  point->observers.push_back(&keyframe);
+  point->observers.push_back({&keyframe, index});
+}
+
+void Map::removeObservation(KeyFrame& keyframe, size_t index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto point = keyframe.map_points[index];
+  if (!point) return;
+  keyframe.map_points[index] = nullptr;
+  auto& observers = point->observers;
+  observers.erase(
+      std::remove_if(observers.begin(), observers.end(),
+                     [&](const MapPoint::Observer& o) { return o.keyframe == &keyframe; }),
+      observers.end());
+  for (const auto& o : observers) {
+    // Covisibility counts shared landmarks; this one is no longer shared.
+    if (--keyframe.covisibility[o.keyframe] <= 0) keyframe.covisibility.erase(o.keyframe);
+    if (--o.keyframe->covisibility[&keyframe] <= 0) o.keyframe->covisibility.erase(&keyframe);
+  }
 }
 
 size_t Map::removeBadPoints() {

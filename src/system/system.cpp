@@ -7,7 +7,10 @@
 namespace ply_slam {
 
 System::System(const SystemConfig& config)
-    : config_(config), extractor_(config.orb), tracker_(config_, map_, extractor_.scales()) {}
+    : config_(config),
+      extractor_(config.orb),
+      tracker_(config_, map_, extractor_.scales()),
+      mapper_(config_, map_) {}
 
 void System::validate(const RgbdImages& images) const {
   const auto& cam = config_.camera;
@@ -48,6 +51,13 @@ FrameResult System::process(const RgbdImages& images) {
   result.tracking = tracker_.track(frame);
   result.timing.tracking_ms = tracking.elapsedMs();
   result.timing.total_ms = total.elapsedMs();
+
+  // The mapping side, run in line here so that offline runs are reproducible.
+  if (result.tracking.new_keyframe) {
+    Stopwatch mapping;
+    mapper_.insertKeyFrame(result.tracking.new_keyframe);
+    result.timing.mapping_ms = mapping.elapsedMs();
+  }
 
   const bool ok = result.tracking.state == TrackingState::kOk;
   has_velocity_ = false;

@@ -84,7 +84,8 @@ int run(const Options& options) {
 
   System system(config);
   std::ofstream timing(out / "timing.csv");
-  timing << "frame,stamp,state,method,inliers,keyframe,features_ms,tracking_ms,total_ms\n";
+  timing
+      << "frame,stamp,state,method,inliers,keyframe,features_ms,tracking_ms,mapping_ms,total_ms\n";
   std::vector<double> total_ms;
   long frames = 0, lost = 0;
   const size_t n = options.max_frames >= 0
@@ -98,8 +99,9 @@ int run(const Options& options) {
     total_ms.push_back(r.timing.total_ms);
     timing << r.frame_id << ',' << std::fixed << std::setprecision(6) << r.stamp << ','
            << toString(r.tracking.state) << ',' << r.tracking.method << ',' << r.tracking.inliers
-           << ',' << r.tracking.new_keyframe << ',' << std::setprecision(3) << r.timing.features_ms
-           << ',' << r.timing.tracking_ms << ',' << r.timing.total_ms << '\n';
+           << ',' << (r.tracking.new_keyframe != nullptr) << ',' << std::setprecision(3)
+           << r.timing.features_ms << ',' << r.timing.tracking_ms << ',' << r.timing.mapping_ms
+           << ',' << r.timing.total_ms << '\n';
   }
 
   writeTumTrajectory((out / "CameraTrajectory.txt").string(), system.cameraTrajectory());

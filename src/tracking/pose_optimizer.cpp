@@ -1,7 +1,9 @@
 #include "ply_slam/tracking/pose_optimizer.h"
 
+#include "ply_slam/common/point_residual.h"
+#include "ply_slam/common/se3_params.h"
+
 #include <ceres/ceres.h>
-#include <ceres/rotation.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,28 +12,30 @@
 namespace ply_slam {
 namespace {
 
-// Whitened residual of one observation for the pose [angle-axis (3), translation (3)] of T_cw.
-// With kDepth the measured depth adds a third, metric residual.
-template <bool kDepth>
-struct PointCost {
-  PointCost(const PointObservation& o, const PinholeCamera& c) : obs(o), cam(c) {}
+PointResidual toResidual(const PointObservation& o) {
+  PointResidual r;
+  r.u = o.pixel.x();
+  r.v = o.pixel.y();
+  r.pixel_sigma = o.pixel_sigma;
+  r.depth = o.depth;
+  r.depth_sigma = o.depth_sigma;
+  return r;
+}
+
+// The landmark is fixed: only the pose is optimised.
+struct FixedPointCost {
+  FixedPointCost(const PointObservation& o, const PinholeCamera& c)
+      : residual(toResidual(o)), world(o.world), cam(c) {}
 
   template <typename T>
-  bool operator()(const T* pose, T* residual) const {
-    const T world[3] = {T(obs.world.x()), T(obs.world.y()), T(obs.world.z())};
-    T p[3];
-    ceres::AngleAxisRotatePoint(pose, world, p);
-    p[0] += pose[3];
-    p[1] += pose[4];
-    p[2] += pose[5];
-    if (p[2] <= T(1e-6)) p[2] = T(1e-6);  // behind the camera: large residual, no division by 0
-    residual[0] = (T(cam.fx) * p[0] / p[2] + T(cam.cx) - T(obs.pixel.x())) / T(obs.pixel_sigma);
-    residual[1] = (T(cam.fy) * p[1] / p[2] + T(cam.cy) - T(obs.pixel.y())) / T(obs.pixel_sigma);
-    if constexpr (kDepth) residual[2] = (p[2] - T(obs.depth)) / T(obs.depth_sigma);
+  bool operator()(const T* pose, T* out) const {
+    const T w[3] = {T(world.x()), T(world.y()), T(world.z())};
+    residual.evaluate(cam, pose, w, out);
     return true;
   }
 
-  const PointObservation obs;
+  const PointResidual residual;
+  const Eigen::Vector3d world;
   const PinholeCamera& cam;
 };
 
@@ -57,21 +61,7 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
   inlier.assign(observations.size(), true);
   if (observations.empty()) return 0;
 
-  double pose[6];
-  const Eigen::AngleAxisd aa(T_cw.rotation());
-  const Eigen::Vector3d rotation = aa.angle() * aa.axis();
-  const Eigen::Vector3d translation = T_cw.translation();
-  std::copy(rotation.data(), rotation.data() + 3, pose);
-  std::copy(translation.data(), translation.data() + 3, pose + 3);
-
-  auto toIsometry = [&pose]() {
-    Eigen::Vector3d w(pose[0], pose[1], pose[2]);
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    const double angle = w.norm();
-    if (angle > 1e-12) T.linear() = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
-    T.translation() = Eigen::Vector3d(pose[3], pose[4], pose[5]);
-    return T;
-  };
+  Se3Params pose = toParams(T_cw);
 
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
@@ -91,12 +81,12 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
       const auto& o = observations[i];
       if (usesDepth(o)) {
         problem.AddResidualBlock(
-            new ceres::AutoDiffCostFunction<PointCost<true>, 3, 6>(new PointCost<true>(o, camera_)),
-            new ceres::HuberLoss(std::sqrt(params_.chi2_depth)), pose);
+            new ceres::AutoDiffCostFunction<FixedPointCost, 3, 6>(new FixedPointCost(o, camera_)),
+            new ceres::HuberLoss(std::sqrt(params_.chi2_depth)), pose.data());
       } else {
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointCost<false>, 2, 6>(
-                                     new PointCost<false>(o, camera_)),
-                                 new ceres::HuberLoss(std::sqrt(params_.chi2_pixel)), pose);
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<FixedPointCost, 2, 6>(new FixedPointCost(o, camera_)),
+            new ceres::HuberLoss(std::sqrt(params_.chi2_pixel)), pose.data());
       }
       ++used;
     }
@@ -105,7 +95,7 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
     ceres::Solve(options, &problem, &summary);
 
     // Re-classify every observation, so that one wrongly rejected early can come back.
-    const Eigen::Isometry3d T = toIsometry();
+    const Eigen::Isometry3d T = fromParams(pose.data());
     num_inliers = 0;
     bool changed = false;
     for (size_t i = 0; i < observations.size(); ++i) {
@@ -117,7 +107,7 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
     }
     if (!changed && round > 0) break;
   }
-  T_cw = toIsometry();
+  T_cw = fromParams(pose.data());
   return num_inliers;
 }
 

@@ -49,7 +49,7 @@ TrackingResult Tracker::track(Frame& frame) {
   if (state_ == TrackingState::kNotInitialised) {
     if (initialise(frame)) {
       result.method = "init";
-      result.new_keyframe = true;
+      result.new_keyframe = last_keyframe_;
       result.inliers = frame.numMatches();
     }
   } else {
@@ -79,7 +79,7 @@ TrackingResult Tracker::track(Frame& frame) {
       result.inliers = inliers;
       if (needKeyFrame(frame, inliers)) {
         createKeyFrame(frame);
-        result.new_keyframe = true;
+        result.new_keyframe = last_keyframe_;
       }
     } else {
       state_ = TrackingState::kLost;
@@ -194,7 +194,7 @@ void Tracker::updateLocalMap(const Frame& frame) {
   for (size_t i = 0; i < frame.map_points.size(); ++i) {
     const auto& p = frame.map_points[i];
     if (!p || frame.outlier[i] || p->bad) continue;
-    for (KeyFrame* kf : p->observers) ++shared[kf];
+    for (const auto& o : p->observers) ++shared[o.keyframe];
   }
   std::vector<std::pair<int, KeyFrame*>> ranked;
   for (const auto& [kf, n] : shared) ranked.emplace_back(n, kf);

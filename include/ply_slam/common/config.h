@@ -31,11 +31,10 @@ struct TrackingParams {
   double nn_ratio = 0.9;                // best / second best distance
   int min_tracked_points = 30;          // fewer inliers: tracking is lost
   int local_map_keyframes = 10;         // covisible keyframes whose points form the local map
-  double huber_pixels = 2.4;            // robust kernel width sqrt(5.99) px
   double chi2_outlier = 5.991;          // 2-DoF chi-square 95 %: outlier above
   int optimisation_rounds = 4;          // outlier re-classification rounds
   double keyframe_min_ratio = 0.85;     // new keyframe when tracked < ratio * reference keyframe's
-  int keyframe_max_frames = 20;         // or after this many frames
+  int keyframe_max_frames = 5;          // or after this many frames
   double keyframe_translation = 0.10;   // m, or after moving this far
   double keyframe_rotation_deg = 15.0;  // or after turning this far
   int pnp_iterations = 200;             // RANSAC iterations when projection matching fails

@@ -18,6 +18,8 @@ class Map {
                                            const cv::Mat& descriptor, long keyframe_id);
   // Links keypoint `index` of `keyframe` to `point` and updates covisibility.
   void addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point);
+  // Unlinks keypoint `index` of `keyframe` from its landmark and updates covisibility.
+  void removeObservation(KeyFrame& keyframe, size_t index);
   // Drops points marked bad from the container (keyframes keep null-safe shared_ptrs).
   size_t removeBadPoints();
 

@@ -16,10 +16,14 @@ struct MapPoint {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // mean viewing direction (unit)
   // Distances at which the point can be seen at scale level 0 .. last (scale invariance).
   double min_distance = 0.0, max_distance = 0.0;
-  double position_weight = 0.0;      // sum of inverse variances fused into `position`
-  std::vector<KeyFrame*> observers;  // keyframes that observe it
-  int visible = 0;                   // frames in whose frustum it projected
-  int found = 0;                     // frames in which it was matched as an inlier
+  double position_weight = 0.0;  // sum of inverse variances fused into `position`
+  struct Observer {
+    KeyFrame* keyframe;
+    size_t index;  // keypoint index in that keyframe
+  };
+  std::vector<Observer> observers;  // keyframes that observe it
+  int visible = 0;                  // frames in whose frustum it projected
+  int found = 0;                    // frames in which it was matched as an inlier
   long first_keyframe_id = 0;
   long last_projected_frame = -1;  // frame id it was last projected into (no double work)
   long local_map_frame = -1;       // frame id whose local map holds it (deduplication)

@@ -8,6 +8,7 @@
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/mapping/mapper.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {
@@ -16,7 +17,8 @@ namespace ply_slam {
 struct FrameTiming {
   double features_ms = 0.0;  // grey conversion, ORB, undistortion, depth lookup
   double tracking_ms = 0.0;  // matching, pose optimisation, keyframe insertion
-  double total_ms = 0.0;
+  double total_ms = 0.0;     // features + tracking: what the frame costs the tracking side
+  double mapping_ms = 0.0;   // local bundle adjustment after a new keyframe (mapping side)
 };
 
 struct FrameResult {
@@ -56,6 +58,7 @@ class System {
   OrbExtractor extractor_;
   Map map_;
   Tracker tracker_;
+  Mapper mapper_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   Trajectory camera_trajectory_;

@@ -19,8 +19,8 @@ struct TrackingResult {
   TrackingState state = TrackingState::kNotInitialised;
   Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
   int inliers = 0;
-  bool new_keyframe = false;
-  std::string method;  // how the pose was found: init, motion, pnp, reloc
+  std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
+  std::string method;                      // how the pose was found: init, motion, pnp, reloc
 };
 
 // Frame-to-local-map tracking of RGB-D frames: constant-velocity prediction and projection

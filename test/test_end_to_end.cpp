@@ -1,0 +1,61 @@
+// End to end on the real TUM sequences in ../shared: the whole offline pipeline, evaluated
+// against ground truth.
+#include <gtest/gtest.h>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/eval/trajectory_metrics.h"
+#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/system/system.h"
+#include "shared_data.h"
+
+namespace ply_slam {
+namespace {
+
+struct RunOutcome {
+  size_t frames = 0;
+  size_t lost = 0;
+  double ate_rmse = 0.0;
+};
+
+RunOutcome runSequence(const std::string& folder) {
+  const SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+  const TumSequence sequence(folder);
+  System system(config);
+  RunOutcome outcome;
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    const FrameResult r = system.process(sequence.load(i, config.camera.depth_factor));
+    ++outcome.frames;
+    outcome.lost += r.tracking.state != TrackingState::kOk;
+  }
+  outcome.ate_rmse = computeAte(sequence.groundTruth(), system.cameraTrajectory()).translation.rmse;
+  return outcome;
+}
+
+// Bounds are what this build measures plus a margin (docs/RESULTS.md); issue #2 asks for
+// 0.006 m on fr1_xyz_37 and 0.015 m on fr1_rpy_150_349, which are not reached yet.
+TEST(EndToEnd, Freiburg1Xyz37) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  const RunOutcome r = runSequence(folder);
+  EXPECT_EQ(r.frames, 32u);
+  EXPECT_EQ(r.lost, 0u);
+  EXPECT_LT(r.ate_rmse, 0.0070);  // measured 0.0063
+}
+
+TEST(EndToEnd, Freiburg1Rpy150To349) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  const RunOutcome r = runSequence(folder);
+  EXPECT_EQ(r.frames, 199u);
+  EXPECT_EQ(r.lost, 0u);
+  // OpenCV RgbdOdometry measures 0.0288 m on these frames (scripts/benchmark.sh).
+  EXPECT_LT(r.ate_rmse, 0.026);  // measured 0.0229
+}
+
+}  // namespace
+}  // namespace ply_slam
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
