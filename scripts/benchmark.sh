@@ -45,17 +45,7 @@ for seq in "${SEQUENCES[@]}"; do
   [ -d "$seq" ] || { echo "benchmark: sequence folder missing: $seq" >&2; exit 1; }
 done
 
-config_for() {
-  local name
-  name="$(basename "$1")"
-  if [[ "$name" =~ (freiburg|fr)([123]) ]]; then
-    echo "${PLY_SLAM_ROOT}/config/tum_fr${BASH_REMATCH[2]}.yaml"
-  else
-    echo "benchmark: cannot choose a config for '$name' (expected freiburg1/2/3 in the name)" >&2
-    return 1
-  fi
-}
-for seq in "${SEQUENCES[@]}"; do config_for "$seq" >/dev/null; done
+for seq in "${SEQUENCES[@]}"; do ply_slam_config_for "$seq" >/dev/null; done
 
 if [ "$BUILD" -eq 1 ]; then
   ply_slam_install_packages
@@ -110,7 +100,7 @@ add_row() {
 
 for seq in "${SEQUENCES[@]}"; do
   name="$(basename "$seq")"
-  config="$(config_for "$seq")"
+  config="$(ply_slam_config_for "$seq")"
   gt="$seq/groundtruth.txt"
   slam_dir="${OUT_ROOT}/${name}/ply_slam"
   odo_dir="${OUT_ROOT}/${name}/rgbd_odometry"

@@ -43,3 +43,16 @@ ply_slam_build() {
 # The shared data and models live beside the repository (never inside it).
 PLY_SLAM_SHARED="${PLY_SLAM_SHARED:-$(cd "${PLY_SLAM_ROOT}/.." && pwd)/shared}"
 export PLY_SLAM_SHARED
+
+# The config for a TUM folder, from "freiburgN" or "frN" in its name.
+ply_slam_config_for() {
+  local name
+  name="$(basename "$1")"
+  if [[ "$name" =~ (freiburg|fr)([123]) ]]; then
+    echo "${PLY_SLAM_ROOT}/config/tum_fr${BASH_REMATCH[2]}.yaml"
+  else
+    echo "cannot choose a config for '$name' (expected freiburg1/2/3 in the folder name;" \
+      "set PLY_SLAM_CONFIG to a config file)" >&2
+    return 1
+  fi
+}
