@@ -11,4 +11,4 @@ ply_slam_build
 echo "[test] building and running tests"
 ply_slam_build tests
 cd "${PLY_SLAM_WS}/build"
-ctest --output-on-failure -j1
+ctest --output-on-failure --no-tests=error -j1

@@ -13,7 +13,8 @@ namespace ply_slam::test {
 inline std::string sharedDir() {
   const char* env = std::getenv("PLY_SLAM_SHARED");
   if (env && *env) return env;
-  return std::string(PLY_SLAM_SOURCE_DIR) + "/../shared";
+  // The source dir may be the catkin workspace's symlink: resolve it before going up.
+  return (std::filesystem::weakly_canonical(PLY_SLAM_SOURCE_DIR).parent_path() / "shared").string();
 }
 
 inline std::string sharedPath(const std::string& relative) { return sharedDir() + "/" + relative; }

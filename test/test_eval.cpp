@@ -18,6 +18,7 @@
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "shared_data.h"
 
 namespace ply_slam {
 namespace {
@@ -444,22 +445,10 @@ TEST(TrajectoryPlot, DrawsBothTrajectoriesAndSurvivesDegenerateInput) {
 
 // ---------------------------------------------------------------- real ground truth
 
-std::string sharedDirectory() {
-  const char* env = std::getenv("PLY_SLAM_SHARED");
-  return env && *env ? std::string(env) : std::string(PLY_SLAM_SOURCE_DIR "/../shared");
-}
-
 TEST(RealGroundTruth, AteOfTransformedCopyOfFr1XyzIsZero) {
   const std::string path =
-      sharedDirectory() + "/data/tum/rgbd_dataset_freiburg1_xyz_37/groundtruth.txt";
-  if (!fs::exists(path)) {
-    const char* ci = std::getenv("CI");
-    if (ci && std::string(ci) == "true") {
-      FAIL() << "ground truth not found at " << path << " (set PLY_SLAM_SHARED)";
-    }
-    GTEST_SKIP() << "ground truth not found at " << path
-                 << "; set PLY_SLAM_SHARED to the shared data folder to run this test";
-  }
+      test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37/groundtruth.txt");
+  PLY_SLAM_REQUIRE_SHARED(path);
   const Trajectory gt = readTumTrajectory(path);
   ASSERT_GT(gt.size(), 1000u);
   const Eigen::Isometry3d T =

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ply_slam/io/tum_sequence.h"
+#include "shared_data.h"
 
 namespace ply_slam {
 namespace {
@@ -234,16 +235,8 @@ TEST_F(TumFolderTest, SizeMismatchThrows) {
 
 // Real data: the shared TUM fr1_xyz excerpt (../shared, never in the repository).
 TEST(TumSequenceRealData, Freiburg1Xyz) {
-  const char* shared_env = std::getenv("PLY_SLAM_SHARED");
-  const std::string shared =
-      shared_env ? std::string(shared_env) : std::string(PLY_SLAM_SOURCE_DIR) + "/../shared";
-  const std::string dir = shared + "/data/tum/rgbd_dataset_freiburg1_xyz_37";
-  if (!fs::is_directory(dir)) {
-    const char* ci = std::getenv("CI");
-    if (ci && std::string(ci) == "true") FAIL() << "shared TUM data missing under CI: " << dir;
-    GTEST_SKIP() << "shared TUM data not found at " << dir
-                 << " (set PLY_SLAM_SHARED to the folder holding data/tum)";
-  }
+  const std::string dir = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(dir);
 
   size_t association_lines = 0;
   {

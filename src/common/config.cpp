@@ -14,15 +14,16 @@ class Section {
  public:
   Section(const YAML::Node& node, std::string file, std::string name)
       : node_(node), file_(std::move(file)), name_(std::move(name)) {
-    if (node_ && !node_.IsMap())
+    if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap())
       throw ConfigError("config " + file_ + ": " + name_ + " must be a map of keys");
   }
 
   template <typename T>
   void read(const std::string& key, T& value, bool required = false) {
     used_.insert(key);
-    const YAML::Node v = node_ ? node_[key] : YAML::Node();
-    if (!v) {
+    // A section that is absent leaves every key at its default.
+    const YAML::Node v = get(key);
+    if (!v.IsDefined() || v.IsNull()) {
       if (required) fail(key, "is required");
       return;
     }
@@ -41,12 +42,12 @@ class Section {
 
   Section child(const std::string& key) {
     used_.insert(key);
-    return Section(node_ ? node_[key] : YAML::Node(), file_, path(key));
+    return Section(get(key), file_, path(key));
   }
 
   // Every key present in the file must have been read.
   void rejectUnknownKeys() const {
-    if (!node_) return;
+    if (!node_.IsDefined() || node_.IsNull()) return;
     for (const auto& kv : node_) {
       const auto key = kv.first.as<std::string>();
       if (!used_.count(key)) fail(key, "is not a known key");
@@ -55,6 +56,13 @@ class Section {
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
     throw ConfigError("config " + file_ + ": " + path(key) + " " + what);
+  }
+
+  // The value under key, undefined when this section or the key is absent. Read through a
+  // const node: yaml-cpp's non-const operator[] would insert the key.
+  YAML::Node get(const std::string& key) const {
+    const YAML::Node& node = node_;
+    return node.IsDefined() && node.IsMap() ? node[key] : YAML::Node(YAML::NodeType::Undefined);
   }
 
   std::string path(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
@@ -95,6 +103,7 @@ void readCamera(Section s, PinholeCamera& c) {
 void readOrb(Section s, OrbParams& o) {
   s.readPositive("num_features", o.num_features);
   s.readPositive("num_levels", o.num_levels);
+  if (o.num_levels > 32) s.fail("num_levels", "must be <= 32");
   s.readPositive("scale_factor", o.scale_factor);
   if (o.scale_factor <= 1.0) s.fail("scale_factor", "must be > 1");
   s.readPositive("fast_threshold", o.fast_threshold);

@@ -128,6 +128,7 @@ void OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypo
       } else {
         const cv::Size size(cvRound(gray.cols / scales_[level]),
                             cvRound(gray.rows / scales_[level]));
+        if (size.width < 1 || size.height < 1) continue;  // tiny image: the level vanishes
         cv::resize(gray, image, size, 0, 0, cv::INTER_LINEAR);
       }
       detectLevel(image, level, level_keypoints[level]);

@@ -1,5 +1,7 @@
 #include "ply_slam/map/key_frame.h"
 
+#include <algorithm>
+
 namespace ply_slam {
 
 int KeyFrame::trackedPoints(int min_observations) const {
@@ -7,6 +9,17 @@ int KeyFrame::trackedPoints(int min_observations) const {
   for (const auto& p : map_points)
     if (p && !p->bad && p->observations() >= min_observations) ++n;
   return n;
+}
+
+std::vector<KeyFrame*> KeyFrame::bestCovisible(size_t n) const {
+  std::vector<std::pair<int, KeyFrame*>> ranked;
+  for (const auto& [kf, weight] : covisibility) ranked.emplace_back(weight, kf);
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second->id < b.second->id;
+  });
+  std::vector<KeyFrame*> best;
+  for (size_t i = 0; i < ranked.size() && i < n; ++i) best.push_back(ranked[i].second);
+  return best;
 }
 
 }  // namespace ply_slam

@@ -25,6 +25,11 @@ std::shared_ptr<MapPoint> Map::createMapPoint(const Eigen::Vector3d& position,
 
 void Map::addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point) {
   std::lock_guard<std::mutex> lock(mutex_);
+  addObservationLocked(keyframe, index, point);
+}
+
+void Map::addObservationLocked(KeyFrame& keyframe, size_t index,
+                               const std::shared_ptr<MapPoint>& point) {
   keyframe.map_points[index] = point;
   for (const auto& o : point->observers) {
     if (o.keyframe == &keyframe) continue;
@@ -36,6 +41,10 @@ void Map::addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr
 
 void Map::removeObservation(KeyFrame& keyframe, size_t index) {
   std::lock_guard<std::mutex> lock(mutex_);
+  removeObservationLocked(keyframe, index);
+}
+
+void Map::removeObservationLocked(KeyFrame& keyframe, size_t index) {
   const auto point = keyframe.map_points[index];
   if (!point) return;
   keyframe.map_points[index] = nullptr;
@@ -49,6 +58,23 @@ void Map::removeObservation(KeyFrame& keyframe, size_t index) {
     if (--keyframe.covisibility[o.keyframe] <= 0) keyframe.covisibility.erase(o.keyframe);
     if (--o.keyframe->covisibility[&keyframe] <= 0) o.keyframe->covisibility.erase(&keyframe);
   }
+}
+
+void Map::replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<MapPoint>& winner) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto observers = loser->observers;
+  for (const auto& o : observers) {
+    removeObservationLocked(*o.keyframe, o.index);
+    const bool seen =
+        std::any_of(winner->observers.begin(), winner->observers.end(),
+                    [&](const MapPoint::Observer& w) { return w.keyframe == o.keyframe; });
+    if (!seen) addObservationLocked(*o.keyframe, o.index, winner);
+  }
+  winner->visible += loser->visible;
+  winner->found += loser->found;
+  winner->fuse(loser->position, loser->position_weight);
+  loser->bad = true;
+  loser->replaced_by = winner;
 }
 
 size_t Map::removeBadPoints() {

@@ -11,6 +11,7 @@ int MapPoint::predictLevel(double distance, double log_scale, int num_levels) co
 }
 
 void MapPoint::fuse(const Eigen::Vector3d& measured, double weight) {
+  if (position_weight + weight <= 0.0) return;
   position = (position * position_weight + measured * weight) / (position_weight + weight);
   position_weight += weight;
 }

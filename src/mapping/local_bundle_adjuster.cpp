@@ -36,31 +36,34 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
   const auto& t = config_.tracking;
   LocalBundleAdjustmentStats stats;
 
-  // Local keyframes: the new one and its best covisible ones.
-  std::vector<std::pair<int, KeyFrame*>> neighbours;
-  for (const auto& [kf, weight] : keyframe.covisibility) neighbours.emplace_back(weight, kf);
-  std::sort(neighbours.begin(), neighbours.end(),
-            [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::unordered_set<KeyFrame*> local{&keyframe};
-  for (const auto& [weight, kf] : neighbours) {
-    if (static_cast<int>(local.size()) > t.local_map_keyframes) break;
-    local.insert(kf);
-  }
-  std::unordered_map<KeyFrame*, Se3Params> poses;
-  for (KeyFrame* kf : local) poses[kf] = toParams(kf->T_cw);
+  // Local keyframes: the new one and its best covisible ones. Containers are filled and
+  // walked in a fixed order so that the same input gives the same solution.
+  std::vector<KeyFrame*> keyframes{&keyframe};
+  for (KeyFrame* kf : keyframe.bestCovisible(t.local_map_keyframes)) keyframes.push_back(kf);
+  std::unordered_set<KeyFrame*> local(keyframes.begin(), keyframes.end());
+  std::unordered_map<KeyFrame*, size_t> pose_index;
+  std::vector<Se3Params> poses;
+  auto addPose = [&](KeyFrame* kf) {
+    if (pose_index.emplace(kf, poses.size()).second) poses.push_back(toParams(kf->T_cw));
+    return pose_index[kf];
+  };
+  for (KeyFrame* kf : keyframes) addPose(kf);
 
   // Their landmarks, and every observation of them (other keyframes enter fixed).
-  std::unordered_map<MapPoint*, std::array<double, 3>> points;
-  std::vector<Observation> observations;
-  for (const auto& [kf, pose] : poses) {
+  std::vector<MapPoint*> point_list;
+  std::unordered_map<MapPoint*, size_t> point_index;
+  std::vector<std::array<double, 3>> points;
+  for (KeyFrame* kf : keyframes) {
     for (const auto& p : kf->map_points) {
-      if (!p || p->bad || points.count(p.get())) continue;
-      points[p.get()] = {p->position.x(), p->position.y(), p->position.z()};
+      if (!p || p->bad || !point_index.emplace(p.get(), points.size()).second) continue;
+      point_list.push_back(p.get());
+      points.push_back({p->position.x(), p->position.y(), p->position.z()});
     }
   }
-  for (auto& [point, position] : points) {
+  std::vector<Observation> observations;
+  for (MapPoint* point : point_list) {
     for (const auto& [kf, i] : point->observers) {
-      if (!poses.count(kf)) poses[kf] = toParams(kf->T_cw);
+      addPose(kf);
       const auto& f = kf->features;
       PointResidual r;
       r.u = f.undistorted[i].x();
@@ -77,6 +80,8 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
   ceres::Problem::Options problem_options;
   ceres::Problem problem(problem_options);
   for (auto& o : observations) {
+    // Behind the keyframe already: no constraint, and removed as an outlier below.
+    if ((o.keyframe->T_cw * o.point->position).z() <= PointResidual::kMinDepth) continue;
     const int dims = o.residual.hasDepth() ? 3 : 2;
     ceres::CostFunction* cost = dims == 3
                                     ? static_cast<ceres::CostFunction*>(
@@ -85,16 +90,18 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
                                     : new ceres::AutoDiffCostFunction<ObservationCost, 2, 6, 3>(
                                           new ObservationCost(o.residual, config_.camera));
     const double chi2 = dims == 3 ? t.chi2_outlier + 1.824 : t.chi2_outlier;
-    problem.AddResidualBlock(cost, new ceres::HuberLoss(std::sqrt(chi2)), poses[o.keyframe].data(),
-                             points[o.point].data());
+    problem.AddResidualBlock(cost, new ceres::HuberLoss(std::sqrt(chi2)),
+                             poses[pose_index[o.keyframe]].data(),
+                             points[point_index[o.point]].data());
   }
   // Fixed: keyframes outside the local window, and the first keyframe (gauge freedom).
-  for (auto& [kf, pose] : poses) {
+  for (const auto& [kf, index] : pose_index) {
     if (local.count(kf) && kf->id != 0) {
       ++stats.keyframes;
     } else {
       ++stats.fixed_keyframes;
-      if (problem.HasParameterBlock(pose.data())) problem.SetParameterBlockConstant(pose.data());
+      double* pose = poses[index].data();
+      if (problem.HasParameterBlock(pose)) problem.SetParameterBlockConstant(pose);
     }
   }
   stats.points = static_cast<int>(points.size());
@@ -110,9 +117,9 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
 
   // Drop observations that are still outliers; write back poses and landmarks.
   for (auto& o : observations) {
-    double r[3];
-    const auto& pose = poses[o.keyframe];
-    const auto& position = points[o.point];
+    double r[3] = {0.0, 0.0, 0.0};
+    const auto& pose = poses[pose_index[o.keyframe]];
+    const auto& position = points[point_index[o.point]];
     o.residual.evaluate(config_.camera, pose.data(), position.data(), r);
     const bool depth = o.residual.hasDepth();
     const double e2 = r[0] * r[0] + r[1] * r[1] + (depth ? r[2] * r[2] : 0.0);
@@ -121,10 +128,11 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
       ++stats.outliers_removed;
     }
   }
-  for (auto& [kf, pose] : poses) kf->T_cw = fromParams(pose.data());
-  for (auto& [point, position] : points) {
-    point->position = Eigen::Vector3d(position[0], position[1], position[2]);
-    if (point->observers.empty()) point->bad = true;
+  for (const auto& [kf, index] : pose_index)
+    if (local.count(kf)) kf->T_cw = fromParams(poses[index].data());
+  for (size_t k = 0; k < point_list.size(); ++k) {
+    point_list[k]->position = Eigen::Vector3d(points[k][0], points[k][1], points[k][2]);
+    if (point_list[k]->observers.empty()) point_list[k]->bad = true;
   }
   return stats;
 }

@@ -1,5 +1,6 @@
 #include "ply_slam/system/system.h"
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/stopwatch.h"
@@ -27,6 +28,8 @@ void System::validate(const RgbdImages& images) const {
     throw InvalidFrame("image is " + std::to_string(images.rgb.cols) + "x" +
                        std::to_string(images.rgb.rows) + " but the camera is configured for " +
                        std::to_string(cam.width) + "x" + std::to_string(cam.height));
+  if (!std::isfinite(images.stamp) || !std::isfinite(images.depth_stamp))
+    throw InvalidFrame("stamp is not a finite number");
   if (images.stamp <= last_stamp_)
     throw InvalidFrame("stamp " + std::to_string(images.stamp) +
                        " does not follow the previous frame's " + std::to_string(last_stamp_));

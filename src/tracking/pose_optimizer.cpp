@@ -60,6 +60,9 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
                             Eigen::Isometry3d& T_cw, std::vector<bool>& inlier) const {
   inlier.assign(observations.size(), true);
   if (observations.empty()) return 0;
+  // Landmarks behind the camera at the start cannot be reprojected: outliers from the outset.
+  for (size_t i = 0; i < observations.size(); ++i)
+    inlier[i] = (T_cw * observations[i].world).z() > PointResidual::kMinDepth;
 
   Se3Params pose = toParams(T_cw);
 
@@ -69,7 +72,7 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;
 
-  int num_inliers = static_cast<int>(observations.size());
+  int num_inliers = static_cast<int>(std::count(inlier.begin(), inlier.end(), true));
   for (int round = 0; round < params_.rounds; ++round) {
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
@@ -90,7 +93,11 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
       }
       ++used;
     }
-    if (used < 3) break;
+    if (used < 3) {  // too few to fix six degrees of freedom: nothing fits
+      inlier.assign(observations.size(), false);
+      num_inliers = 0;
+      break;
+    }
     ceres::Solver::Summary summary;
     ceres::Solve(options, &problem, &summary);
 

@@ -109,8 +109,10 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   std::vector<std::shared_ptr<MapPoint>> points;
   std::vector<int> levels;
   for (size_t i = 0; i < last_frame_->map_points.size(); ++i) {
-    if (!last_frame_->map_points[i] || last_frame_->outlier[i]) continue;
-    points.push_back(last_frame_->map_points[i]);
+    auto p = last_frame_->map_points[i];
+    if (!p || last_frame_->outlier[i]) continue;
+    while (p->bad && p->replaced_by) p = p->replaced_by;  // merged by the mapper meanwhile
+    points.push_back(p);
     levels.push_back(last_frame_->features.level(i));
   }
   ProjectionMatchParams params;
@@ -198,8 +200,10 @@ void Tracker::updateLocalMap(const Frame& frame) {
   }
   std::vector<std::pair<int, KeyFrame*>> ranked;
   for (const auto& [kf, n] : shared) ranked.emplace_back(n, kf);
-  std::sort(ranked.begin(), ranked.end(),
-            [](const auto& a, const auto& b) { return a.first > b.first; });
+  // Ties go to the older keyframe: the order must not depend on memory addresses.
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second->id < b.second->id;
+  });
 
   std::vector<KeyFrame*> chosen;
   for (const auto& [n, kf] : ranked) {

@@ -33,7 +33,7 @@ struct TrackingParams {
   int local_map_keyframes = 10;         // covisible keyframes whose points form the local map
   double chi2_outlier = 5.991;          // 2-DoF chi-square 95 %: outlier above
   int optimisation_rounds = 4;          // outlier re-classification rounds
-  double keyframe_min_ratio = 0.85;     // new keyframe when tracked < ratio * reference keyframe's
+  double keyframe_min_ratio = 0.7;      // new keyframe when tracked < ratio * reference keyframe's
   int keyframe_max_frames = 5;          // or after this many frames
   double keyframe_translation = 0.10;   // m, or after moving this far
   double keyframe_rotation_deg = 15.0;  // or after turning this far

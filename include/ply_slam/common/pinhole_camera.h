@@ -6,10 +6,11 @@
 namespace ply_slam {
 
 // Depth-sensor noise, variance in m^2: sigma_Z^2 = alpha Z^2 + beta Z + gamma (PAPER.md §3.1).
+// Defaults: Kinect-class sensor as in config/tum_fr1.yaml (sigma_Z = 5 mm at 1 m).
 struct DepthNoiseModel {
-  double alpha = 0.0;
+  double alpha = 2.5e-5;
   double beta = 0.0;
-  double gamma = 0.0;
+  double gamma = 1.0e-5;
   double variance(double z) const { return alpha * z * z + beta * z + gamma; }
 };
 

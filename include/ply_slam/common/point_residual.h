@@ -10,6 +10,9 @@ namespace ply_slam {
 // adjustment. pose = [angle-axis (3), translation (3)] of T_cw; world = landmark (3).
 // Writes 2 pixel residuals, and a metric depth residual when depth_sigma > 0.
 struct PointResidual {
+  static constexpr double kMinDepth = 1e-3;             // m
+  static constexpr double kBehindCameraResidual = 1e3;  // whitened units
+
   double u = 0.0, v = 0.0;   // undistorted observation (px)
   double pixel_sigma = 1.0;  // px
   double depth = 0.0;        // m
@@ -24,7 +27,13 @@ struct PointResidual {
     p[0] += pose[3];
     p[1] += pose[4];
     p[2] += pose[5];
-    if (p[2] <= T(1e-6)) p[2] = T(1e-6);  // behind the camera: large residual, no division by 0
+    if (p[2] < T(kMinDepth)) {
+      // Behind the camera: a large constant without gradient, so one bad landmark can neither
+      // divide by zero nor drag the solution; the caller classifies it as an outlier.
+      residual[0] = residual[1] = T(kBehindCameraResidual);
+      if (hasDepth()) residual[2] = T(0.0);
+      return;
+    }
     residual[0] = (T(cam.fx) * p[0] / p[2] + T(cam.cx) - T(u)) / T(pixel_sigma);
     residual[1] = (T(cam.fy) * p[1] / p[2] + T(cam.cy) - T(v)) / T(pixel_sigma);
     if (hasDepth()) residual[2] = (p[2] - T(depth)) / T(depth_sigma);

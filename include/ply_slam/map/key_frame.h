@@ -22,6 +22,8 @@ struct KeyFrame {
 
   Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }
   int trackedPoints(int min_observations = 1) const;
+  // Up to n keyframes sharing the most landmarks with this one, most first.
+  std::vector<KeyFrame*> bestCovisible(size_t n) const;
 };
 
 }  // namespace ply_slam

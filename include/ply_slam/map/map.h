@@ -20,6 +20,9 @@ class Map {
   void addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point);
   // Unlinks keypoint `index` of `keyframe` from its landmark and updates covisibility.
   void removeObservation(KeyFrame& keyframe, size_t index);
+  // Merges `loser` into `winner` (two landmarks found to be one): every keyframe that saw the
+  // loser sees the winner instead; the loser turns bad and points to its replacement.
+  void replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<MapPoint>& winner);
   // Drops points marked bad from the container (keyframes keep null-safe shared_ptrs).
   size_t removeBadPoints();
 
@@ -29,6 +32,10 @@ class Map {
   size_t numMapPoints() const;
 
  private:
+  void addObservationLocked(KeyFrame& keyframe, size_t index,
+                            const std::shared_ptr<MapPoint>& point);
+  void removeObservationLocked(KeyFrame& keyframe, size_t index);
+
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<KeyFrame>> keyframes_;
   std::vector<std::shared_ptr<MapPoint>> points_;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -28,6 +29,7 @@ struct MapPoint {
   long last_projected_frame = -1;  // frame id it was last projected into (no double work)
   long local_map_frame = -1;       // frame id whose local map holds it (deduplication)
   bool bad = false;
+  std::shared_ptr<MapPoint> replaced_by;  // set when merged into a duplicate of itself
 
   int observations() const { return static_cast<int>(observers.size()); }
   double foundRatio() const { return visible > 0 ? static_cast<double>(found) / visible : 1.0; }

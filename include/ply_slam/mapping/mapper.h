@@ -4,20 +4,25 @@
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/mapping/landmark_fuser.h"
 #include "ply_slam/mapping/local_bundle_adjuster.h"
 
 namespace ply_slam {
 
-// The mapping side: refines the map around each new keyframe (local bundle adjustment) and
-// retires landmarks that lost their observations. Loop closure and dense maps join here.
+// The mapping side: joins each new keyframe's landmarks with its neighbours', refines the map
+// around it (local bundle adjustment) and retires landmarks that lost their observations. Loop
+// closure and dense maps join here.
 class Mapper {
  public:
-  Mapper(const SystemConfig& config, Map& map) : map_(map), bundle_adjuster_(config) {}
+  Mapper(const SystemConfig& config, Map& map)
+      : config_(config), map_(map), fuser_(config), bundle_adjuster_(config) {}
 
   LocalBundleAdjustmentStats insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe);
 
  private:
+  const SystemConfig config_;
   Map& map_;
+  LandmarkFuser fuser_;
   LocalBundleAdjuster bundle_adjuster_;
 };
 

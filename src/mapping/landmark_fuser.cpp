@@ -1,0 +1,104 @@
+#include "ply_slam/mapping/landmark_fuser.h"
+
+#include <cmath>
+#include <limits>
+#include <unordered_set>
+
+#include "ply_slam/tracking/projection_matcher.h"
+
+namespace ply_slam {
+namespace {
+
+constexpr double kRadiusPx = 3.0;  // search radius at level 0 around the projection
+constexpr int kMaxDistance = 50;   // Hamming: stricter than tracking, a merge is permanent
+
+bool observedBy(const MapPoint& p, const KeyFrame* kf) {
+  for (const auto& o : p.observers)
+    if (o.keyframe == kf) return true;
+  return false;
+}
+
+}  // namespace
+
+LandmarkFuser::LandmarkFuser(const SystemConfig& config)
+    : config_(config), log_scale_(std::log(config.orb.scale_factor)) {}
+
+int LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
+                        const std::vector<KeyFrame*>& neighbours) const {
+  int changes = 0;
+  // Neighbours' landmarks into the new keyframe.
+  std::vector<std::shared_ptr<MapPoint>> candidates;
+  std::unordered_set<const MapPoint*> seen;
+  for (KeyFrame* kf : neighbours)
+    for (const auto& p : kf->map_points)
+      if (p && !p->bad && seen.insert(p.get()).second) candidates.push_back(p);
+  changes += fuseInto(map, keyframe, candidates);
+
+  // The new keyframe's landmarks into each neighbour.
+  std::vector<std::shared_ptr<MapPoint>> own;
+  for (const auto& p : keyframe.map_points)
+    if (p && !p->bad) own.push_back(p);
+  for (KeyFrame* kf : neighbours) changes += fuseInto(map, *kf, own);
+  return changes;
+}
+
+int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
+                            const std::vector<std::shared_ptr<MapPoint>>& points) const {
+  const auto& cam = config_.camera;
+  const auto& f = target.features;
+  const Eigen::Vector3d centre = target.T_wc().translation();
+  const int num_levels = config_.orb.num_levels;
+  int changes = 0;
+  for (const auto& p : points) {
+    if (p->bad || observedBy(*p, &target)) continue;
+    const Eigen::Vector3d pc = target.T_cw * p->position;
+    if (pc.z() <= 0.05) continue;
+    const Eigen::Vector2d uv = cam.project(pc);
+    if (!cam.inImage(uv)) continue;
+    const Eigen::Vector3d ray = p->position - centre;
+    const double distance = ray.norm();
+    if (distance < 0.8 * p->min_distance || distance > 1.2 * p->max_distance) continue;
+    if (ray.dot(p->normal) < 0.5 * distance) continue;
+    const int level = p->predictLevel(distance, log_scale_, num_levels);
+
+    int best = std::numeric_limits<int>::max();
+    long best_index = -1;
+    for (size_t i :
+         f.featuresInArea(uv.x(), uv.y(), kRadiusPx * (*f.scales)[level], level - 1, level)) {
+      // Geometric agreement first: reprojection (and depth where measured) within 95 %.
+      const double sigma = f.scale(i);
+      double e2 = (f.undistorted[i] - uv).squaredNorm() / (sigma * sigma);
+      double chi2 = config_.tracking.chi2_outlier;
+      if (f.hasDepth(i)) {
+        const double dz = f.depth[i] - pc.z();
+        e2 += dz * dz / cam.depth_noise.variance(f.depth[i]);
+        chi2 += 1.824;
+      }
+      if (e2 > chi2) continue;
+      const int d = descriptorDistance(p->descriptor, f.descriptors.row(static_cast<int>(i)));
+      if (d < best) {
+        best = d;
+        best_index = static_cast<long>(i);
+      }
+    }
+    if (best_index < 0 || best > kMaxDistance) continue;
+
+    const auto existing = target.map_points[best_index];
+    if (!existing || existing->bad) {
+      if (existing) map.removeObservation(target, static_cast<size_t>(best_index));
+      map.addObservation(target, static_cast<size_t>(best_index), p);
+    } else if (existing != p) {
+      // One corner, two landmarks: keep the better established one.
+      if (existing->observations() >= p->observations())
+        map.replace(p, existing);
+      else
+        map.replace(existing, p);
+    } else {
+      continue;
+    }
+    ++changes;
+  }
+  return changes;
+}
+
+}  // namespace ply_slam

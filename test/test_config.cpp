@@ -1,0 +1,289 @@
+// loadConfig: the shipped configs load with their documented values, and every kind of bad
+// file is rejected with a ConfigError that names the file and the offending key.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "ply_slam/common/config.h"
+
+namespace ply_slam {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kConfigDir = std::string(PLY_SLAM_SOURCE_DIR) + "/config/";
+
+// A complete, valid config in the layout of the shipped files; tests edit one line of it.
+const char* const kValidYaml = R"(camera:
+  fx: 517.3
+  fy: 516.5
+  cx: 318.6
+  cy: 255.3
+  width: 640
+  height: 480
+  distortion: [0.2624, -0.9531, -0.0054, 0.0026, 1.1633]
+  depth_factor: 5000.0
+  min_depth: 0.3
+  max_depth: 6.0
+  depth_noise:
+    alpha: 6.25e-6
+    beta: 0.0
+    gamma: 1.0e-6
+orb:
+  num_features: 1000
+  num_levels: 8
+  scale_factor: 1.2
+tracking:
+  search_radius_px: 15
+  nn_ratio: 0.9
+  max_point_depth: 6.0
+)";
+
+// Files under a per-process temporary directory, removed after each test.
+class ConfigFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("ply_slam_test_config_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  // kValidYaml with the first occurrence of `from` replaced by `to` (which must exist).
+  std::string writeEdited(const std::string& name, const std::string& from,
+                          const std::string& to) const {
+    std::string text = kValidYaml;
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the template";
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return write(name, text);
+  }
+
+  fs::path dir_;
+};
+
+// Loading `path` must throw ConfigError mentioning the path and every fragment.
+void expectConfigError(const std::string& path, const std::vector<std::string>& fragments) {
+  try {
+    loadConfig(path);
+    ADD_FAILURE() << path << " loaded, expected a ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path), std::string::npos)
+        << "message '" << message << "' lacks the path " << path;
+    for (const auto& fragment : fragments)
+      EXPECT_NE(message.find(fragment), std::string::npos)
+          << "message '" << message << "' lacks '" << fragment << "'";
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << path << " threw a non-ConfigError: " << e.what();
+  }
+}
+
+struct ShippedIntrinsics {
+  const char* file;
+  double fx, fy, cx, cy, depth_factor;
+  bool distorted;
+};
+
+TEST(ShippedConfig, EveryFileLoadsWithItsDocumentedIntrinsics) {
+  // TUM values from the benchmark's published calibration (DESIGN.md); D435i from its file.
+  const ShippedIntrinsics expected[] = {
+      {"tum_fr1.yaml", 517.3, 516.5, 318.6, 255.3, 5000.0, true},
+      {"tum_fr2.yaml", 520.9, 521.0, 325.1, 249.7, 5000.0, true},
+      {"tum_fr3.yaml", 535.4, 539.2, 320.1, 247.6, 5000.0, false},
+      {"d435i.yaml", 615.0, 615.0, 320.0, 240.0, 1000.0, false},
+  };
+  // Every shipped file is covered: a new one must be added here.
+  size_t yaml_files = 0;
+  for (const auto& entry : fs::directory_iterator(kConfigDir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++yaml_files;
+    bool listed = false;
+    for (const auto& e : expected) listed |= entry.path().filename() == e.file;
+    EXPECT_TRUE(listed) << entry.path() << " is not checked by this test";
+  }
+  EXPECT_EQ(yaml_files, std::size(expected));
+
+  for (const auto& e : expected) {
+    SCOPED_TRACE(e.file);
+    const std::string path = kConfigDir + e.file;
+    SystemConfig config;
+    ASSERT_NO_THROW(config = loadConfig(path));
+    EXPECT_EQ(config.source_path, path);
+    const PinholeCamera& c = config.camera;
+    EXPECT_DOUBLE_EQ(c.fx, e.fx);
+    EXPECT_DOUBLE_EQ(c.fy, e.fy);
+    EXPECT_DOUBLE_EQ(c.cx, e.cx);
+    EXPECT_DOUBLE_EQ(c.cy, e.cy);
+    EXPECT_EQ(c.width, 640);
+    EXPECT_EQ(c.height, 480);
+    EXPECT_DOUBLE_EQ(c.depth_factor, e.depth_factor);
+    EXPECT_EQ(c.hasDistortion(), e.distorted);
+    EXPECT_LT(c.min_depth, c.max_depth);
+    EXPECT_GT(c.depth_noise.variance(c.min_depth), 0.0);
+    EXPECT_GT(config.orb.num_features, 0);
+    EXPECT_GT(config.orb.scale_factor, 1.0);
+  }
+}
+
+TEST(ShippedConfig, Fr1ValuesBeyondTheIntrinsics) {
+  const SystemConfig config = loadConfig(kConfigDir + "tum_fr1.yaml");
+  ASSERT_EQ(config.camera.distortion.total(), 5u);
+  ASSERT_EQ(config.camera.distortion.type(), CV_64F);
+  const double k[5] = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
+  for (int i = 0; i < 5; ++i) EXPECT_DOUBLE_EQ(config.camera.distortion.at<double>(i), k[i]);
+  EXPECT_DOUBLE_EQ(config.camera.min_depth, 0.3);
+  EXPECT_DOUBLE_EQ(config.camera.max_depth, 6.0);
+  EXPECT_EQ(config.orb.num_features, 1000);
+  EXPECT_EQ(config.orb.num_levels, 8);
+  EXPECT_DOUBLE_EQ(config.orb.scale_factor, 1.2);
+  EXPECT_EQ(config.tracking.search_radius_px, 15);
+  EXPECT_DOUBLE_EQ(config.tracking.chi2_outlier, 5.991);
+}
+
+TEST_F(ConfigFileTest, TheTemplateLoadsAndOverridesDefaults) {
+  // Guards the error tests below: each differs from a loadable file by one edit.
+  const std::string path = write("valid.yaml", kValidYaml);
+  SystemConfig config;
+  ASSERT_NO_THROW(config = loadConfig(path));
+  EXPECT_DOUBLE_EQ(config.camera.fx, 517.3);
+  EXPECT_DOUBLE_EQ(config.tracking.max_point_depth, 6.0);
+  // Keys left out keep their defaults.
+  EXPECT_EQ(config.orb.fast_threshold, OrbParams().fast_threshold);
+  EXPECT_EQ(config.tracking.min_tracked_points, TrackingParams().min_tracked_points);
+
+  const std::string edited = writeEdited("edited.yaml", "num_features: 1000", "num_features: 500");
+  EXPECT_EQ(loadConfig(edited).orb.num_features, 500);
+}
+
+TEST_F(ConfigFileTest, OmittedSectionKeepsDefaults) {
+  // Sections are optional like their keys: a file without tracking: uses TrackingParams().
+  std::string text = kValidYaml;
+  text.erase(text.find("tracking:"));
+  SystemConfig config;
+  ASSERT_NO_THROW(config = loadConfig(write("no_tracking.yaml", text)))
+      << "a config without a tracking section fails";
+  EXPECT_EQ(config.tracking.search_radius_px, TrackingParams().search_radius_px);
+  EXPECT_EQ(config.orb.num_features, 1000);
+}
+
+TEST_F(ConfigFileTest, OnlyIntrinsicsAndSizeAreRequired) {
+  // config/*.yaml: "Every key is optional except camera intrinsics and image size".
+  const std::string path = write("minimal.yaml",
+                                 "camera:\n  fx: 500\n  fy: 500\n  cx: 320\n  cy: 240\n"
+                                 "  width: 640\n  height: 480\n");
+  SystemConfig config;
+  ASSERT_NO_THROW(config = loadConfig(path)) << "a config with only the required keys fails";
+  EXPECT_DOUBLE_EQ(config.camera.fx, 500.0);
+  EXPECT_FALSE(config.camera.hasDistortion());
+}
+
+TEST_F(ConfigFileTest, MissingFile) {
+  expectConfigError((dir_ / "does_not_exist.yaml").string(), {"cannot open"});
+}
+
+TEST_F(ConfigFileTest, InvalidYaml) {
+  expectConfigError(write("bad.yaml", "camera:\n  fx: [517.3\n  fy: 516.5\n"), {"YAML"});
+  expectConfigError(write("list.yaml", "- 1\n- 2\n"), {"top level"});
+}
+
+TEST_F(ConfigFileTest, MissingRequiredKeys) {
+  expectConfigError(writeEdited("no_fx.yaml", "  fx: 517.3\n", ""), {"camera.fx", "required"});
+  expectConfigError(writeEdited("no_height.yaml", "  height: 480\n", ""), {"camera.height"});
+  expectConfigError(write("no_camera.yaml", "orb:\n  num_features: 1000\n"), {"camera"});
+}
+
+TEST_F(ConfigFileTest, MisspeltKeyAnywhere) {
+  // At every nesting level and in every section: silently falling back to a default would hide
+  // the user's setting.
+  expectConfigError(writeEdited("orb.yaml", "num_features:", "num_feature:"),
+                    {"orb.num_feature", "not a known key"});
+  expectConfigError(writeEdited("camera.yaml", "  fy:", "  fy: 516.5\n  fz:"), {"camera.fz"});
+  expectConfigError(writeEdited("noise.yaml", "    beta:", "    betta:"),
+                    {"camera.depth_noise.betta"});
+  expectConfigError(writeEdited("tracking.yaml", "nn_ratio:", "nn_ration:"),
+                    {"tracking.nn_ration"});
+}
+
+TEST_F(ConfigFileTest, MisspeltSectionName) {
+  // The section then counts as absent (defaults) and its misspelt name as an unknown key.
+  expectConfigError(writeEdited("top.yaml", "tracking:", "trackng:"),
+                    {"trackng", "not a known key"});
+}
+
+TEST_F(ConfigFileTest, WrongType) {
+  expectConfigError(writeEdited("fx_text.yaml", "fx: 517.3", "fx: five hundred"),
+                    {"camera.fx", "wrong type"});
+  expectConfigError(writeEdited("width_real.yaml", "width: 640", "width: 640.5"),
+                    {"camera.width", "wrong type"});
+  expectConfigError(writeEdited("levels_list.yaml", "num_levels: 8", "num_levels: [8]"),
+                    {"orb.num_levels", "wrong type"});
+  expectConfigError(
+      writeEdited("distortion_scalar.yaml",
+                  "distortion: [0.2624, -0.9531, -0.0054, 0.0026, 1.1633]", "distortion: 0.2624"),
+      {"camera.distortion"});
+  expectConfigError(writeEdited("section_scalar.yaml",
+                                "orb:\n  num_features: 1000\n  "
+                                "num_levels: 8\n  scale_factor: 1.2\n",
+                                "orb: 7\n"),
+                    {"orb"});
+}
+
+TEST_F(ConfigFileTest, NegativeOrZeroValues) {
+  expectConfigError(writeEdited("fx.yaml", "fx: 517.3", "fx: -517.3"), {"camera.fx", "> 0"});
+  expectConfigError(writeEdited("width.yaml", "width: 640", "width: 0"), {"camera.width"});
+  expectConfigError(writeEdited("factor.yaml", "depth_factor: 5000.0", "depth_factor: -1"),
+                    {"camera.depth_factor"});
+  expectConfigError(writeEdited("features.yaml", "num_features: 1000", "num_features: -5"),
+                    {"orb.num_features"});
+  expectConfigError(writeEdited("radius.yaml", "search_radius_px: 15", "search_radius_px: -15"),
+                    {"tracking.search_radius_px"});
+  expectConfigError(writeEdited("scale.yaml", "scale_factor: 1.2", "scale_factor: 0.8"),
+                    {"orb.scale_factor"});
+  expectConfigError(writeEdited("noise.yaml", "gamma: 1.0e-6", "gamma: -1.0"),
+                    {"camera.depth_noise"});
+}
+
+TEST_F(ConfigFileTest, MaxDepthNotAboveMinDepth) {
+  expectConfigError(writeEdited("equal.yaml", "max_depth: 6.0", "max_depth: 0.3"),
+                    {"camera.max_depth", "min_depth"});
+  expectConfigError(writeEdited("below.yaml", "max_depth: 6.0", "max_depth: 0.2"),
+                    {"camera.max_depth"});
+}
+
+TEST_F(ConfigFileTest, DistortionNeedsFourOrFiveCoefficients) {
+  expectConfigError(writeEdited("three.yaml", "[0.2624, -0.9531, -0.0054, 0.0026, 1.1633]",
+                                "[0.2624, -0.9531, -0.0054]"),
+                    {"camera.distortion", "4 or 5"});
+  expectConfigError(writeEdited("six.yaml", "[0.2624, -0.9531, -0.0054, 0.0026, 1.1633]",
+                                "[0.1, 0.1, 0.1, 0.1, 0.1, 0.1]"),
+                    {"camera.distortion"});
+  // Four coefficients are accepted (k3 = 0).
+  const std::string four = writeEdited("four.yaml", "[0.2624, -0.9531, -0.0054, 0.0026, 1.1633]",
+                                       "[0.1, -0.2, 0.003, 0.004]");
+  SystemConfig config;
+  ASSERT_NO_THROW(config = loadConfig(four));
+  EXPECT_EQ(config.camera.distortion.total(), 4u);
+  EXPECT_TRUE(config.camera.hasDistortion());
+}
+
+}  // namespace
+}  // namespace ply_slam
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,150 @@
+// PinholeCamera and DepthNoiseModel: projection round trips, hand-computed values and the
+// exact image borders, so that a swapped fx/fy, cx/cy or an off-by-one border fails.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/core.hpp>
+
+#include "ply_slam/common/pinhole_camera.h"
+
+namespace ply_slam {
+namespace {
+
+// TUM fr1 intrinsics; fx != fy and cx, cy off-centre so that swaps show.
+PinholeCamera makeFr1Camera() {
+  PinholeCamera camera;
+  camera.fx = 517.3;
+  camera.fy = 516.5;
+  camera.cx = 318.6;
+  camera.cy = 255.3;
+  camera.width = 640;
+  camera.height = 480;
+  return camera;
+}
+
+TEST(PinholeCamera, ProjectOfBackProjectReturnsThePixelOverAGrid) {
+  const PinholeCamera camera = makeFr1Camera();
+  int checked = 0;
+  // Includes pixels outside the image and sub-pixel positions: the model is unbounded.
+  for (double u = -20.5; u <= 660.0; u += 37.25) {
+    for (double v = -10.25; v <= 500.0; v += 29.5) {
+      for (double z : {0.1, 0.5, 1.0, 2.7, 8.0, 25.0}) {
+        const Eigen::Vector2d uv(u, v);
+        const Eigen::Vector3d p = camera.backProject(uv, z);
+        EXPECT_DOUBLE_EQ(p.z(), z);
+        EXPECT_LT((camera.project(p) - uv).norm(), 1e-9) << "u " << u << " v " << v << " z " << z;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(PinholeCamera, KnownProjectionAndBackProjection) {
+  const PinholeCamera camera = makeFr1Camera();
+  // The principal point is the optical axis at any depth.
+  const Eigen::Vector3d axis = camera.backProject({318.6, 255.3}, 2.0);
+  EXPECT_NEAR(axis.x(), 0.0, 1e-12);
+  EXPECT_NEAR(axis.y(), 0.0, 1e-12);
+  // (0.2, -0.1, 2) m: u = 517.3 * 0.1 + 318.6 = 370.33, v = 516.5 * -0.05 + 255.3 = 229.475.
+  const Eigen::Vector2d uv = camera.project({0.2, -0.1, 2.0});
+  EXPECT_NEAR(uv.x(), 370.33, 1e-9);
+  EXPECT_NEAR(uv.y(), 229.475, 1e-9);
+  // Pixel (0, 0) at 1 m: x = -318.6 / 517.3, y = -255.3 / 516.5.
+  const Eigen::Vector3d corner = camera.backProject({0.0, 0.0}, 1.0);
+  EXPECT_NEAR(corner.x(), -318.6 / 517.3, 1e-12);
+  EXPECT_NEAR(corner.y(), -255.3 / 516.5, 1e-12);
+
+  const cv::Matx33d K = camera.K();
+  EXPECT_EQ(K(0, 0), 517.3);
+  EXPECT_EQ(K(1, 1), 516.5);
+  EXPECT_EQ(K(0, 2), 318.6);
+  EXPECT_EQ(K(1, 2), 255.3);
+  EXPECT_EQ(K(2, 2), 1.0);
+  EXPECT_EQ(K(0, 1), 0.0);
+  EXPECT_EQ(K(1, 0), 0.0);
+}
+
+TEST(DepthNoiseModel, VarianceIsTheQuadratic) {
+  DepthNoiseModel model;
+  // Default: the Kinect-class model of config/tum_fr1.yaml, 2.5e-5 Z^2 + 1e-5.
+  EXPECT_NEAR(model.variance(3.0), 2.5e-5 * 9.0 + 1.0e-5, 1e-15);
+
+  model.alpha = 6.25e-6;
+  model.beta = 0.0;
+  model.gamma = 1.0e-6;
+  // Another set of coefficients: 6.25e-6 Z^2 + 1e-6.
+  EXPECT_NEAR(model.variance(0.0), 1.0e-6, 1e-18);
+  EXPECT_NEAR(model.variance(1.0), 7.25e-6, 1e-18);
+  EXPECT_NEAR(model.variance(2.0), 26.0e-6, 1e-18);
+  EXPECT_NEAR(model.variance(4.0), 101.0e-6, 1e-18);
+
+  // Every term on its own, with distinct magnitudes so that a swapped term shows.
+  model = DepthNoiseModel{2.0, 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(model.variance(3.0), 18.0);
+  model = DepthNoiseModel{0.0, 5.0, 0.0};
+  EXPECT_DOUBLE_EQ(model.variance(3.0), 15.0);
+  model = DepthNoiseModel{0.0, 0.0, 7.0};
+  EXPECT_DOUBLE_EQ(model.variance(3.0), 7.0);
+  model = DepthNoiseModel{1e-3, 2e-3, 3e-4};
+  EXPECT_NEAR(model.variance(1.5), 1e-3 * 2.25 + 2e-3 * 1.5 + 3e-4, 1e-15);
+}
+
+TEST(PinholeCamera, InImageBorders) {
+  const PinholeCamera camera = makeFr1Camera();
+  // Without a border: [0, width) x [0, height).
+  EXPECT_TRUE(camera.inImage({0.0, 0.0}));
+  EXPECT_TRUE(camera.inImage({639.999, 479.999}));
+  EXPECT_FALSE(camera.inImage({640.0, 100.0}));
+  EXPECT_FALSE(camera.inImage({100.0, 480.0}));
+  EXPECT_FALSE(camera.inImage({-1e-6, 100.0}));
+  EXPECT_FALSE(camera.inImage({100.0, -1e-6}));
+  EXPECT_TRUE(camera.inImage({320.0, 240.0}));
+
+  // With a 10 px border: [10, width - 10) x [10, height - 10).
+  EXPECT_TRUE(camera.inImage({10.0, 10.0}, 10.0));
+  EXPECT_FALSE(camera.inImage({9.999, 100.0}, 10.0));
+  EXPECT_FALSE(camera.inImage({100.0, 9.999}, 10.0));
+  EXPECT_TRUE(camera.inImage({629.999, 469.999}, 10.0));
+  EXPECT_FALSE(camera.inImage({630.0, 100.0}, 10.0));
+  EXPECT_FALSE(camera.inImage({100.0, 470.0}, 10.0));
+}
+
+TEST(PinholeCamera, ValidDepthIsTheClosedRange) {
+  PinholeCamera camera = makeFr1Camera();
+  camera.min_depth = 0.3;
+  camera.max_depth = 6.0;
+  EXPECT_TRUE(camera.validDepth(0.3));
+  EXPECT_TRUE(camera.validDepth(6.0));
+  EXPECT_TRUE(camera.validDepth(2.0));
+  EXPECT_FALSE(camera.validDepth(0.299));
+  EXPECT_FALSE(camera.validDepth(6.001));
+  EXPECT_FALSE(camera.validDepth(0.0));
+  EXPECT_FALSE(camera.validDepth(std::nan("")));
+}
+
+TEST(PinholeCamera, HasDistortion) {
+  PinholeCamera camera = makeFr1Camera();
+  EXPECT_FALSE(camera.hasDistortion());  // empty
+
+  camera.distortion = cv::Mat::zeros(1, 5, CV_64F);
+  EXPECT_FALSE(camera.hasDistortion());  // all zero: rectified
+
+  for (int i = 0; i < 5; ++i) {
+    camera.distortion = cv::Mat::zeros(1, 5, CV_64F);
+    camera.distortion.at<double>(0, i) = 1e-4;
+    EXPECT_TRUE(camera.hasDistortion()) << "coefficient " << i;
+  }
+  camera.distortion = (cv::Mat_<double>(1, 5) << 0.2624, -0.9531, -0.0054, 0.0026, 1.1633);
+  EXPECT_TRUE(camera.hasDistortion());
+  camera.distortion = (cv::Mat_<double>(1, 4) << 0.0, 0.0, 0.0, -0.01);
+  EXPECT_TRUE(camera.hasDistortion());
+}
+
+}  // namespace
+}  // namespace ply_slam
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
