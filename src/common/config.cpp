@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <set>
 #include <sstream>
 
@@ -89,6 +90,9 @@ void readCamera(Section s, PinholeCamera& c) {
   s.readPositive("min_depth", c.min_depth);
   s.readPositive("max_depth", c.max_depth);
   if (c.max_depth <= c.min_depth) s.fail("max_depth", "must be > min_depth");
+  s.read("rolling_shutter_readout", c.rolling_shutter_readout);
+  if (std::abs(c.rolling_shutter_readout) > 0.1)
+    s.fail("rolling_shutter_readout", "must be within [-0.1, 0.1] s");
   Section n = s.child("depth_noise");
   n.read("alpha", c.depth_noise.alpha);
   n.read("beta", c.depth_noise.beta);

@@ -42,7 +42,7 @@ float lookupDepth(const cv::Mat& depth_m, const PinholeCamera& camera, const cv:
 
 FrameFeatures FrameFeatures::extract(const cv::Mat& gray, const cv::Mat& depth_m,
                                      const PinholeCamera& camera, const OrbExtractor& extractor,
-                                     const Eigen::Isometry3d* T_depth_rgb) {
+                                     const CameraVelocity* velocity, double depth_dt) {
   FrameFeatures f;
   f.width = gray.cols;
   f.height = gray.rows;
@@ -50,8 +50,6 @@ FrameFeatures FrameFeatures::extract(const cv::Mat& gray, const cv::Mat& depth_m
   extractor.extract(gray, f.keypoints, f.descriptors);
 
   const size_t n = f.keypoints.size();
-  f.undistorted.resize(n);
-  f.depth.assign(n, 0.f);
   std::vector<cv::Point2f> raw(n), rectified;
   for (size_t i = 0; i < n; ++i) raw[i] = f.keypoints[i].pt;
   if (camera.hasDistortion() && n > 0) {
@@ -59,12 +57,41 @@ FrameFeatures FrameFeatures::extract(const cv::Mat& gray, const cv::Mat& depth_m
   } else {
     rectified = raw;
   }
-  for (size_t i = 0; i < n; ++i) {
-    f.undistorted[i] = Eigen::Vector2d(rectified[i].x, rectified[i].y);
-    f.depth[i] = lookupDepth(depth_m, camera, raw[i], f.undistorted[i], T_depth_rgb);
-  }
-  f.buildGrid();
+  f.rectified.resize(n);
+  for (size_t i = 0; i < n; ++i) f.rectified[i] = Eigen::Vector2d(rectified[i].x, rectified[i].y);
+  f.depth_image = depth_m;
+  f.depth_dt = depth_dt;
+  f.correctMotion(camera, velocity);
   return f;
+}
+
+void FrameFeatures::correctMotion(const PinholeCamera& camera, const CameraVelocity* velocity) {
+  CV_Assert(!depth_image.empty());
+  Eigen::Isometry3d T_depth_rgb;
+  const Eigen::Isometry3d* T_depth_rgb_ptr = nullptr;
+  if (velocity && depth_dt != 0.0) {
+    T_depth_rgb = velocity->over(depth_dt);
+    T_depth_rgb_ptr = &T_depth_rgb;
+  }
+  const size_t n = keypoints.size();
+  undistorted = rectified;
+  depth.assign(n, 0.f);
+  for (size_t i = 0; i < n; ++i) {
+    depth[i] = lookupDepth(depth_image, camera, keypoints[i].pt, rectified[i], T_depth_rgb_ptr);
+    if (!velocity || camera.rolling_shutter_readout == 0.0) continue;
+    // Row v was read tau after the middle row: move its observation to the stamp's pose.
+    // The depth image has the same row timing, so the depth lookup above needs no change.
+    const double tau = (keypoints[i].pt.y / camera.height - 0.5) * camera.rolling_shutter_readout;
+    const Eigen::Isometry3d T_stamp_row = velocity->over(-tau);
+    if (depth[i] > 0.f) {
+      const Eigen::Vector3d p = T_stamp_row * camera.backProject(rectified[i], depth[i]);
+      undistorted[i] = camera.project(p);
+      depth[i] = camera.validDepth(p.z()) ? static_cast<float>(p.z()) : 0.f;
+    } else {  // no depth: the rotation alone, which dominates at a distance
+      undistorted[i] = camera.project(T_stamp_row.linear() * camera.backProject(rectified[i], 1.0));
+    }
+  }
+  buildGrid();
 }
 
 void FrameFeatures::buildGrid() {

@@ -45,9 +45,11 @@ FrameResult System::process(const RgbdImages& images) {
   Stopwatch total;
   cv::Mat gray;
   cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
-  Frame frame(result.frame_id, images.stamp,
-              FrameFeatures::extract(gray, images.depth, config_.camera, extractor_,
-                                     predictDepthMotion(images)));
+  Frame frame(
+      result.frame_id, images.stamp,
+      FrameFeatures::extract(gray, images.depth, config_.camera, extractor_,
+                             has_velocity_ ? &velocity_ : nullptr,
+                             images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
   result.timing.features_ms = total.elapsedMs();
 
   Stopwatch tracking;
@@ -68,8 +70,8 @@ FrameResult System::process(const RgbdImages& images) {
     const double dt = images.stamp - last_tracked_stamp_;
     const Eigen::Isometry3d step = result.tracking.T_cw * camera_trajectory_.back().T_wc;
     const Eigen::AngleAxisd rotation(step.rotation());
-    angular_velocity_ = rotation.angle() * rotation.axis() / dt;
-    linear_velocity_ = step.translation() / dt;
+    velocity_.angular = rotation.angle() * rotation.axis() / dt;
+    velocity_.linear = step.translation() / dt;
     has_velocity_ = dt > 0 && dt < 0.2;
   }
   if (ok) {
@@ -77,17 +79,6 @@ FrameResult System::process(const RgbdImages& images) {
     last_tracked_stamp_ = images.stamp;
   }
   return result;
-}
-
-const Eigen::Isometry3d* System::predictDepthMotion(const RgbdImages& images) {
-  if (!has_velocity_ || images.depth_stamp == 0.0) return nullptr;
-  const double dt = images.depth_stamp - images.stamp;
-  const Eigen::Vector3d w = angular_velocity_ * dt;
-  T_depth_rgb_ = Eigen::Isometry3d::Identity();
-  if (w.norm() > 1e-12)
-    T_depth_rgb_.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
-  T_depth_rgb_.translation() = linear_velocity_ * dt;
-  return &T_depth_rgb_;
 }
 
 Trajectory System::keyFrameTrajectory() const {

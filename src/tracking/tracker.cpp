@@ -67,6 +67,18 @@ TrackingResult Tracker::track(Frame& frame) {
       result.method = "reloc";
     }
     int inliers = 0;
+    if (ok && state_ == TrackingState::kOk) {
+      // The frame's own motion is now known far better than the prediction: undo the
+      // exposure motion (rolling shutter, depth delay) with it and solve again.
+      const double dt = frame.stamp - last_frame_->stamp;
+      const Eigen::Isometry3d step = frame.T_cw * last_frame_->T_cw.inverse();
+      const Eigen::AngleAxisd rotation(step.rotation());
+      CameraVelocity velocity;
+      velocity.angular = rotation.angle() * rotation.axis() / dt;
+      velocity.linear = step.translation() / dt;
+      frame.features.correctMotion(config_.camera, &velocity);
+      ok = optimizePose(frame) >= config_.tracking.min_tracked_points;
+    }
     if (ok) {
       inliers = trackLocalMap(frame);
       ok = inliers >= config_.tracking.min_tracked_points;
@@ -77,6 +89,7 @@ TrackingResult Tracker::track(Frame& frame) {
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
       result.inliers = inliers;
+      frame.features.depth_image.release();
       if (needKeyFrame(frame, inliers)) {
         createKeyFrame(frame);
         result.new_keyframe = last_keyframe_;
@@ -86,6 +99,7 @@ TrackingResult Tracker::track(Frame& frame) {
       has_velocity_ = false;
     }
   }
+  frame.features.depth_image.release();  // keyframes and the last frame need no image
   result.state = state_;
   result.T_cw = frame.T_cw;
   if (state_ == TrackingState::kOk) last_frame_ = std::make_unique<Frame>(frame);
@@ -97,6 +111,7 @@ bool Tracker::initialise(Frame& frame) {
   for (size_t i = 0; i < frame.features.size(); ++i) with_depth += frame.features.hasDepth(i);
   if (with_depth < 2 * config_.tracking.min_tracked_points) return false;
   frame.T_cw = Eigen::Isometry3d::Identity();
+  frame.features.depth_image.release();
   createKeyFrame(frame);
   state_ = TrackingState::kOk;
   has_velocity_ = false;

@@ -24,6 +24,7 @@ struct PinholeCamera {
   double min_depth = 0.1;        // m; depth outside [min_depth, max_depth] counts as invalid
   double max_depth = 8.0;
   DepthNoiseModel depth_noise;
+  double rolling_shutter_readout = 0.0;  // s from first to last row; 0 = global shutter
 
   Eigen::Vector2d project(const Eigen::Vector3d& p_c) const {
     return {fx * p_c.x() / p_c.z() + cx, fy * p_c.y() / p_c.z() + cy};

@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "ply_slam/common/camera_velocity.h"
 #include "ply_slam/common/pinhole_camera.h"
 
 namespace ply_slam {
@@ -14,18 +15,26 @@ class OrbExtractor;
 // their depth, and a grid for fixed-radius search.
 struct FrameFeatures {
   std::vector<cv::KeyPoint> keypoints;          // raw image coordinates, octave = level
-  std::vector<Eigen::Vector2d> undistorted;     // pixel coordinates used by the geometry
+  std::vector<Eigen::Vector2d> rectified;       // undistorted, as imaged (rolling shutter and all)
+  std::vector<Eigen::Vector2d> undistorted;     // at the stamp's pose: used by the geometry
   std::vector<float> depth;                     // m; 0 when invalid
   cv::Mat descriptors;                          // N x 32 CV_8U
   const std::vector<double>* scales = nullptr;  // scale per pyramid level (the extractor's)
   int width = 0, height = 0;
+  cv::Mat depth_image;    // m; kept while the frame is tracked, released before it is stored
+  double depth_dt = 0.0;  // s from the rgb to the depth exposure
 
-  // Extracts features from a grey image and looks up depth at each raw keypoint.
-  // T_depth_rgb, when given, is the camera motion from the rgb to the depth exposure: the
-  // depth of each feature is then read where its point was at depth time.
+  // Extracts features from a grey image and looks up depth at each raw keypoint. With the
+  // camera's velocity known, motion during the exposure is undone: each keypoint is moved to
+  // where it would appear at the frame's stamp (rolling shutter rows are read one after
+  // another), and its depth is read where its point was when the depth image was taken,
+  // depth_dt seconds after the rgb image.
   static FrameFeatures extract(const cv::Mat& gray, const cv::Mat& depth_m,
                                const PinholeCamera& camera, const OrbExtractor& extractor,
-                               const Eigen::Isometry3d* T_depth_rgb = nullptr);
+                               const CameraVelocity* velocity = nullptr, double depth_dt = 0.0);
+
+  // Recomputes `undistorted` and `depth` from the raw measurements for a (better) velocity.
+  void correctMotion(const PinholeCamera& camera, const CameraVelocity* velocity);
 
   size_t size() const { return keypoints.size(); }
   int level(size_t i) const { return keypoints[i].octave; }

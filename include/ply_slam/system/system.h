@@ -51,9 +51,6 @@ class System {
  private:
   void validate(const RgbdImages& images) const;
 
-  // Camera motion between the rgb and the depth exposure, from the recent velocity.
-  const Eigen::Isometry3d* predictDepthMotion(const RgbdImages& images);
-
   SystemConfig config_;
   OrbExtractor extractor_;
   Map map_;
@@ -62,10 +59,9 @@ class System {
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   Trajectory camera_trajectory_;
-  bool has_velocity_ = false;
+  bool has_velocity_ = false;  // velocity_ holds the motion between the last two frames
   double last_tracked_stamp_ = -1.0;
-  Eigen::Vector3d angular_velocity_, linear_velocity_;  // of T_cw, per second
-  Eigen::Isometry3d T_depth_rgb_;
+  CameraVelocity velocity_;
 };
 
 }  // namespace ply_slam
