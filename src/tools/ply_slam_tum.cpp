@@ -69,6 +69,15 @@ double peakRssMb() {
   return usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+std::string jsonEscape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 std::string jsonStats(const ErrorStats& s) {
   std::ostringstream out;
   out << std::setprecision(6) << "{\"pairs\": " << s.count << ", \"rmse\": " << s.rmse
@@ -91,9 +100,16 @@ int run(const Options& options) {
   const size_t n = options.max_frames >= 0
                        ? std::min(sequence.size(), static_cast<size_t>(options.max_frames))
                        : sequence.size();
-  for (size_t i = 0; i < n; ++i) {
-    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
-    const FrameResult r = system.process(images);
+  // A frame that cannot be read ends the run, but what was tracked so far is still written.
+  std::string failure;
+  for (size_t i = 0; i < n && failure.empty(); ++i) {
+    FrameResult r;
+    try {
+      r = system.process(sequence.load(i, config.camera.depth_factor));
+    } catch (const std::exception& e) {
+      failure = e.what();
+      break;
+    }
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     total_ms.push_back(r.timing.total_ms);
@@ -108,8 +124,8 @@ int run(const Options& options) {
   writeTumTrajectory((out / "KeyFrameTrajectory.txt").string(), system.keyFrameTrajectory());
 
   std::ostringstream json;
-  json << std::setprecision(6) << "{\n  \"sequence\": \"" << sequence.folder() << "\",\n"
-       << "  \"config\": \"" << options.config << "\",\n"
+  json << std::setprecision(6) << "{\n  \"sequence\": \"" << jsonEscape(sequence.folder())
+       << "\",\n  \"config\": \"" << jsonEscape(options.config) << "\",\n"
        << "  \"frames\": " << frames << ",\n  \"tracked\": " << system.cameraTrajectory().size()
        << ",\n  \"lost\": " << lost << ",\n  \"keyframes\": " << system.map().numKeyFrames()
        << ",\n  \"map_points\": " << system.map().numMapPoints() << ",\n"
@@ -133,6 +149,7 @@ int run(const Options& options) {
               << " frames; RPE " << rpe.translation.rmse << " m, " << rpe.rotation.rmse
               << " deg per frame\n";
   }
+  if (!failure.empty()) json << ",\n  \"error\": \"" << jsonEscape(failure) << "\"";
   json << "\n}\n";
   std::ofstream(out / "summary.json") << json.str();
   writeTrajectoryPlot((out / "trajectory.png").string(), sequence.groundTruth(), aligned, title);
@@ -143,6 +160,10 @@ int run(const Options& options) {
             << "tracking ms median " << percentile(total_ms, 0.5) << ", p95 "
             << percentile(total_ms, 0.95) << "\n"
             << "outputs in " << fs::absolute(out).string() << "\n";
+  if (!failure.empty()) {
+    std::cerr << "ply_slam_tum: stopped after " << frames << " frames: " << failure << "\n";
+    return 1;
+  }
   return 0;
 }
 
