@@ -47,8 +47,7 @@ FrameResult System::process(const RgbdImages& images) {
   cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
   Frame frame(
       result.frame_id, images.stamp,
-      FrameFeatures::extract(gray, images.depth, config_.camera, extractor_,
-                             has_velocity_ ? &velocity_ : nullptr,
+      FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
                              images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
   result.timing.features_ms = total.elapsedMs();
 
@@ -65,19 +64,7 @@ FrameResult System::process(const RgbdImages& images) {
   }
 
   const bool ok = result.tracking.state == TrackingState::kOk;
-  has_velocity_ = false;
-  if (ok && !camera_trajectory_.empty() && camera_trajectory_.back().stamp == last_tracked_stamp_) {
-    const double dt = images.stamp - last_tracked_stamp_;
-    const Eigen::Isometry3d step = result.tracking.T_cw * camera_trajectory_.back().T_wc;
-    const Eigen::AngleAxisd rotation(step.rotation());
-    velocity_.angular = rotation.angle() * rotation.axis() / dt;
-    velocity_.linear = step.translation() / dt;
-    has_velocity_ = dt > 0 && dt < 0.2;
-  }
-  if (ok) {
-    camera_trajectory_.push_back({images.stamp, result.tracking.T_cw.inverse()});
-    last_tracked_stamp_ = images.stamp;
-  }
+  if (ok) camera_trajectory_.push_back({images.stamp, result.tracking.T_cw.inverse()});
   return result;
 }
 

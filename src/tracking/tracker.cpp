@@ -10,6 +10,7 @@ namespace ply_slam {
 namespace {
 
 constexpr int kMinPnpMatches = 15;
+constexpr double kMaxVelocityGap = 0.2;  // s; beyond, the last motion says little
 
 PoseOptimizerParams optimizerParams(const TrackingParams& t) {
   PoseOptimizerParams p;
@@ -70,12 +71,8 @@ TrackingResult Tracker::track(Frame& frame) {
     if (ok && state_ == TrackingState::kOk) {
       // The frame's own motion is now known far better than the prediction: undo the
       // exposure motion (rolling shutter, depth delay) with it and solve again.
-      const double dt = frame.stamp - last_frame_->stamp;
-      const Eigen::Isometry3d step = frame.T_cw * last_frame_->T_cw.inverse();
-      const Eigen::AngleAxisd rotation(step.rotation());
-      CameraVelocity velocity;
-      velocity.angular = rotation.angle() * rotation.axis() / dt;
-      velocity.linear = step.translation() / dt;
+      const CameraVelocity velocity =
+          CameraVelocity::between(last_frame_->T_cw, frame.T_cw, frame.stamp - last_frame_->stamp);
       frame.features.correctMotion(config_.camera, &velocity);
       ok = optimizePose(frame) >= config_.tracking.min_tracked_points;
     }
@@ -84,8 +81,10 @@ TrackingResult Tracker::track(Frame& frame) {
       ok = inliers >= config_.tracking.min_tracked_points;
     }
     if (ok) {
-      has_velocity_ = state_ == TrackingState::kOk;
-      if (has_velocity_) velocity_ = frame.T_cw * last_frame_->T_cw.inverse();
+      // A velocity needs two consecutive tracked frames close enough in time.
+      const double dt = frame.stamp - last_frame_->stamp;
+      has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= kMaxVelocityGap;
+      if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
       result.inliers = inliers;
@@ -119,7 +118,8 @@ bool Tracker::initialise(Frame& frame) {
 }
 
 bool Tracker::trackWithMotionModel(Frame& frame) {
-  frame.T_cw = has_velocity_ ? velocity_ * last_frame_->T_cw : last_frame_->T_cw;
+  frame.T_cw = has_velocity_ ? velocity_.over(frame.stamp - last_frame_->stamp) * last_frame_->T_cw
+                             : last_frame_->T_cw;
   // The last frame's landmarks, searched at the level they were seen at.
   std::vector<std::shared_ptr<MapPoint>> points;
   std::vector<int> levels;

@@ -10,6 +10,14 @@ struct CameraVelocity {
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // rad/s, camera frame
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // m/s, camera frame
 
+  // The constant velocity that moves the camera from pose T_cw_from to T_cw_to in dt seconds.
+  static CameraVelocity between(const Eigen::Isometry3d& T_cw_from,
+                                const Eigen::Isometry3d& T_cw_to, double dt) {
+    const Eigen::Isometry3d step = T_cw_to * T_cw_from.inverse();
+    const Eigen::AngleAxisd rotation(step.rotation());
+    return {rotation.angle() * rotation.axis() / dt, step.translation() / dt};
+  }
+
   // T_{c(t+dt) c(t)}: camera coordinates at t to those at t + dt.
   Eigen::Isometry3d over(double dt) const {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

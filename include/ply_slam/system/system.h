@@ -59,9 +59,6 @@ class System {
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   Trajectory camera_trajectory_;
-  bool has_velocity_ = false;  // velocity_ holds the motion between the last two frames
-  double last_tracked_stamp_ = -1.0;
-  CameraVelocity velocity_;
 };
 
 }  // namespace ply_slam

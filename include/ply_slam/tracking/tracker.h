@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "ply_slam/common/camera_velocity.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/tracking/frame.h"
@@ -32,6 +33,8 @@ class Tracker {
 
   TrackingResult track(Frame& frame);
   TrackingState state() const { return state_; }
+  // The camera's current velocity, null when unknown (start, after a loss).
+  const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
 
  private:
   bool initialise(Frame& frame);
@@ -53,7 +56,7 @@ class Tracker {
 
   TrackingState state_ = TrackingState::kNotInitialised;
   std::unique_ptr<Frame> last_frame_;
-  Eigen::Isometry3d velocity_ = Eigen::Isometry3d::Identity();  // T_cw(k) * T_cw(k-1)^-1
+  CameraVelocity velocity_;  // between the last two tracked frames
   bool has_velocity_ = false;
   std::shared_ptr<KeyFrame> last_keyframe_;
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
