@@ -94,6 +94,31 @@ void FrameFeatures::correctMotion(const PinholeCamera& camera, const CameraVeloc
   buildGrid();
 }
 
+size_t FrameFeatures::removeMasked(const cv::Mat& mask) {
+  CV_Assert(mask.type() == CV_8UC1 && mask.cols == width && mask.rows == height);
+  size_t kept = 0;
+  cv::Mat kept_descriptors;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    const int u = std::clamp(cvRound(keypoints[i].pt.x), 0, width - 1);
+    const int v = std::clamp(cvRound(keypoints[i].pt.y), 0, height - 1);
+    if (mask.at<uchar>(v, u)) continue;
+    keypoints[kept] = keypoints[i];
+    rectified[kept] = rectified[i];
+    undistorted[kept] = undistorted[i];
+    depth[kept] = depth[i];
+    kept_descriptors.push_back(descriptors.row(static_cast<int>(i)));
+    ++kept;
+  }
+  const size_t dropped = keypoints.size() - kept;
+  keypoints.resize(kept);
+  rectified.resize(kept);
+  undistorted.resize(kept);
+  depth.resize(kept);
+  descriptors = kept_descriptors;
+  buildGrid();
+  return dropped;
+}
+
 void FrameFeatures::buildGrid() {
   grid_cols_ = std::max(1, (width + kCellSize - 1) / kCellSize);
   grid_rows_ = std::max(1, (height + kCellSize - 1) / kCellSize);

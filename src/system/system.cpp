@@ -4,8 +4,28 @@
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/semantic/dynamic_classes.h"
 
 namespace ply_slam {
+namespace {
+
+constexpr int kMaskDilationPx = 5;  // masks miss the blurred rim of a moving object
+
+size_t dropDynamicFeatures(FrameFeatures& features, const std::vector<Instance>& instances) {
+  cv::Mat dynamic;
+  for (const auto& instance : instances) {
+    if (!isActiveDynamicClass(instance.class_name)) continue;
+    if (dynamic.empty()) dynamic = cv::Mat::zeros(instance.mask.size(), CV_8UC1);
+    dynamic |= instance.mask;
+  }
+  if (dynamic.empty()) return 0;
+  cv::dilate(dynamic, dynamic,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE,
+                                       cv::Size(2 * kMaskDilationPx + 1, 2 * kMaskDilationPx + 1)));
+  return features.removeMasked(dynamic);
+}
+
+}  // namespace
 
 System::System(const SystemConfig& config)
     : config_(config),
@@ -35,8 +55,12 @@ void System::validate(const RgbdImages& images) const {
                        " does not follow the previous frame's " + std::to_string(last_stamp_));
 }
 
-FrameResult System::process(const RgbdImages& images) {
+FrameResult System::process(const RgbdImages& images, const std::vector<Instance>& instances) {
   validate(images);
+  for (const auto& instance : instances)
+    if (instance.mask.type() != CV_8UC1 || instance.mask.size() != images.rgb.size())
+      throw InvalidFrame("instance mask of '" + instance.class_name +
+                         "' must be 8UC1 of the image size");
   last_stamp_ = images.stamp;
 
   FrameResult result;
@@ -49,6 +73,7 @@ FrameResult System::process(const RgbdImages& images) {
       result.frame_id, images.stamp,
       FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
                              images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
+  result.dynamic_features = dropDynamicFeatures(frame.features, instances);
   result.timing.features_ms = total.elapsedMs();
 
   Stopwatch tracking;

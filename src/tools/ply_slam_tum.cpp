@@ -1,5 +1,5 @@
 // Offline run of ply_slam on a TUM RGB-D folder:
-//   ply_slam_tum --sequence DIR --config FILE --out DIR [--max-frames N]
+//   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks] [--max-frames N]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
 // trajectory.png into DIR.
 #include <sys/resource.h>
@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "ply_slam/common/config.h"
@@ -16,6 +17,7 @@
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/system/system.h"
 
 namespace fs = std::filesystem;
@@ -26,11 +28,14 @@ namespace {
 struct Options {
   std::string sequence, config, out;
   long max_frames = -1;
+  std::string segmenter = "none";
 };
 
 [[noreturn]] void usage(const std::string& error) {
   std::cerr << "ply_slam_tum: " << error << "\n"
-            << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR [--max-frames N]\n";
+            << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
+               " [--segmenter none|masks] [--max-frames N]\n"
+               "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n";
   std::exit(2);
 }
 
@@ -46,11 +51,15 @@ Options parse(int argc, char** argv) {
       o.config = value;
     else if (arg == "--out")
       o.out = value;
+    else if (arg == "--segmenter")
+      o.segmenter = value;
     else if (arg == "--max-frames")
       o.max_frames = std::stol(value);
     else
       usage("unknown option " + arg);
   }
+  if (o.segmenter != "none" && o.segmenter != "masks")
+    usage("unknown segmenter '" + o.segmenter + "' (none or masks)");
   if (o.sequence.empty() || o.config.empty() || o.out.empty())
     usage("--sequence, --config and --out are required");
   return o;
@@ -91,11 +100,15 @@ int run(const Options& options) {
   fs::create_directories(options.out);
   const fs::path out(options.out);
 
+  std::unique_ptr<Segmenter> segmenter;
+  if (options.segmenter == "masks")
+    segmenter = std::make_unique<MaskFolderSegmenter>(sequence.folder());
   System system(config);
   std::ofstream timing(out / "timing.csv");
   timing
       << "frame,stamp,state,method,inliers,keyframe,features_ms,tracking_ms,mapping_ms,total_ms\n";
   std::vector<double> total_ms;
+  size_t dynamic_features = 0;
   long frames = 0, lost = 0;
   const size_t n = options.max_frames >= 0
                        ? std::min(sequence.size(), static_cast<size_t>(options.max_frames))
@@ -105,7 +118,8 @@ int run(const Options& options) {
   for (size_t i = 0; i < n && failure.empty(); ++i) {
     FrameResult r;
     try {
-      r = system.process(sequence.load(i, config.camera.depth_factor));
+      const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+      r = system.process(images, segmenter ? segmenter->segment(images) : std::vector<Instance>{});
     } catch (const std::exception& e) {
       failure = e.what();
       break;
@@ -113,6 +127,7 @@ int run(const Options& options) {
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     total_ms.push_back(r.timing.total_ms);
+    dynamic_features += r.dynamic_features;
     timing << r.frame_id << ',' << std::fixed << std::setprecision(6) << r.stamp << ','
            << toString(r.tracking.state) << ',' << r.tracking.method << ',' << r.tracking.inliers
            << ',' << (r.tracking.new_keyframe != nullptr) << ',' << std::setprecision(3)
@@ -129,6 +144,8 @@ int run(const Options& options) {
        << "  \"frames\": " << frames << ",\n  \"tracked\": " << system.cameraTrajectory().size()
        << ",\n  \"lost\": " << lost << ",\n  \"keyframes\": " << system.map().numKeyFrames()
        << ",\n  \"map_points\": " << system.map().numMapPoints() << ",\n"
+       << "  \"segmenter\": \"" << options.segmenter << "\",\n"
+       << "  \"dynamic_features_dropped\": " << dynamic_features << ",\n"
        << "  \"tracking_ms_median\": " << percentile(total_ms, 0.5) << ",\n"
        << "  \"tracking_ms_p95\": " << percentile(total_ms, 0.95) << ",\n"
        << "  \"peak_rss_mb\": " << peakRssMb();

@@ -36,6 +36,10 @@ struct FrameFeatures {
   // Recomputes `undistorted` and `depth` from the raw measurements for a (better) velocity.
   void correctMotion(const PinholeCamera& camera, const CameraVelocity* velocity);
 
+  // Drops the features whose raw keypoint lies on a non-zero pixel of `mask` (CV_8UC1, image
+  // size). Returns how many were dropped.
+  size_t removeMasked(const cv::Mat& mask);
+
   size_t size() const { return keypoints.size(); }
   int level(size_t i) const { return keypoints[i].octave; }
   double scale(size_t i) const { return (*scales)[keypoints[i].octave]; }

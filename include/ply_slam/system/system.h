@@ -9,6 +9,7 @@
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/mapper.h"
+#include "ply_slam/semantic/instance.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {
@@ -26,6 +27,7 @@ struct FrameResult {
   double stamp = 0.0;
   TrackingResult tracking;
   FrameTiming timing;
+  size_t dynamic_features = 0;  // dropped because they lay on a moving object
 };
 
 // A frame the system cannot use (empty, wrong encoding or size, stamp not increasing).
@@ -41,7 +43,8 @@ class System {
   explicit System(const SystemConfig& config);
 
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
-  FrameResult process(const RgbdImages& images);
+  // Features on instances of moving classes (people, animals, vehicles) are not used.
+  FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
 
   const Trajectory& cameraTrajectory() const { return camera_trajectory_; }  // tracked frames
   Trajectory keyFrameTrajectory() const;
