@@ -1,26 +1,56 @@
 #!/usr/bin/env bash
-# Runs ply_slam on a TUM RGB-D folder and shows the result:
+# Runs ply_slam on an RGB-D sequence and shows the result:
 #   scripts/demo.sh [TUM_FOLDER]
-# Installs what is missing, builds into build/ws, runs ply_slam_tum, prints accuracy and
-# timing and where the outputs are. Without a folder it uses the shared fr1_rpy excerpt.
-# The config follows the folder name (freiburg1/2/3); PLY_SLAM_CONFIG overrides it.
+# Installs what is missing, builds into build/ws, runs ply_slam_tum and prints accuracy,
+# timing and where the outputs are. Without a folder it renders the synthetic office with two
+# people walking through it (300 frames, cached in build/synth) and runs on that.
+# For a TUM folder the config follows its name (freiburg1/2/3); PLY_SLAM_CONFIG overrides it.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
-sequence="${1:-${PLY_SLAM_SHARED}/data/tum/rgbd_dataset_freiburg1_rpy_150_349}"
-if [ ! -f "${sequence}/rgb.txt" ]; then
+sequence="${1:-}"
+if [ -n "$sequence" ] && [ ! -f "${sequence}/rgb.txt" ]; then
   echo "demo: ${sequence} is not a TUM RGB-D folder (no rgb.txt)." >&2
   echo "usage: scripts/demo.sh [TUM_FOLDER]" >&2
   exit 1
 fi
-config="${PLY_SLAM_CONFIG:-$(ply_slam_config_for "$sequence")}"
 
 ply_slam_install_packages
 echo "[demo] building (log: ${PLY_SLAM_WS}/build.log)"
 ply_slam_build
+SECONDS=0
+
+if [ -z "$sequence" ]; then
+  sequence="${PLY_SLAM_ROOT}/build/synth/office_walkers2_300"
+  if [ ! -f "${sequence}/.complete" ]; then
+    echo "[demo] rendering the synthetic office with two walkers into ${sequence}"
+    rm -rf "$sequence"
+    "${PLY_SLAM_BIN}/ply_slam_synth" --out "$sequence" --scene office --walkers 2 --frames 300
+    touch "${sequence}/.complete"
+  fi
+fi
+if [ -n "${PLY_SLAM_CONFIG:-}" ]; then
+  config="$PLY_SLAM_CONFIG"
+elif [ -f "${sequence}/camera.yaml" ]; then
+  config="${sequence}/camera.yaml"
+else
+  config="$(ply_slam_config_for "$sequence")"
+fi
+
+# The best segmenter at hand. A YOLO model joins with issue #5; until then the folder's own
+# instance masks (ground truth in the synthetic and the shared walkers sequences) or none.
+segmenter=none
+if [ -d "${sequence}/masks" ] && [ -f "${sequence}/instances.txt" ]; then
+  segmenter=masks
+  echo "[demo] segmenter: the folder's instance masks (no YOLO segmenter is built yet)"
+else
+  echo "[demo] segmenter: none (no instance masks in the folder; no YOLO segmenter is built yet)"
+fi
 
 out="${PLY_SLAM_ROOT}/build/demo/$(basename "$sequence")"
 echo "[demo] running on ${sequence} with $(basename "$config")"
-"${PLY_SLAM_BIN}/ply_slam_tum" --sequence "$sequence" --config "$config" --out "$out"
+"${PLY_SLAM_BIN}/ply_slam_tum" --sequence "$sequence" --config "$config" --out "$out" \
+  --segmenter "$segmenter"
 echo "[demo] trajectory plot: ${out}/trajectory.png"
 echo "[demo] trajectories, timing.csv and summary.json: ${out}/"
+echo "[demo] done in ${SECONDS} s after the build"
