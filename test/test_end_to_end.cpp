@@ -2,9 +2,13 @@
 // against ground truth.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/synth/synthetic_sequence.h"
+#include "ply_slam/synth/synthetic_sequence_writer.h"
 #include "ply_slam/system/system.h"
 #include "shared_data.h"
 
@@ -17,8 +21,10 @@ struct RunOutcome {
   double ate_rmse = 0.0;
 };
 
-RunOutcome runSequence(const std::string& folder) {
-  const SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+RunOutcome runSequence(const std::string& folder,
+                       const std::string& config_file = std::string(PLY_SLAM_SOURCE_DIR) +
+                                                        "/config/tum_fr1.yaml") {
+  const SystemConfig config = loadConfig(config_file);
   const TumSequence sequence(folder);
   System system(config);
   RunOutcome outcome;
@@ -50,6 +56,22 @@ TEST(EndToEnd, Freiburg1Rpy150To349) {
   // OpenCV RgbdOdometry measures 0.0288 m on these frames (scripts/benchmark.sh): 0.7 x that
   // is 0.020 m, above the absolute bound.
   EXPECT_LE(r.ate_rmse, 0.015);  // measured 0.0078
+}
+
+// Issue #3: the synthetic office without walkers, exact ground truth, 300 frames.
+TEST(EndToEnd, SyntheticOffice) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "ply_slam_test_synthetic_office";
+  std::filesystem::remove_all(dir);
+  SynthOptions options;
+  options.scene = SceneKind::kOffice;
+  options.frames = 300;
+  writeSyntheticSequence(SyntheticSequence(options), dir.string());
+  const RunOutcome r = runSequence(dir.string(), (dir / "camera.yaml").string());
+  EXPECT_EQ(r.frames, 300u);
+  EXPECT_EQ(r.lost, 0u);
+  EXPECT_LE(r.ate_rmse, 0.005);  // measured 0.0019
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -108,8 +108,7 @@ TEST(DynamicFeatures, WalkersMaskedOutOnSyntheticOffice) {
 TEST(DynamicFeatures, StaticClassesAreKept) {
   const std::string folder = test::sharedPath(kWalkers);
   PLY_SLAM_REQUIRE_SHARED(folder);
-  const SystemConfig config =
-      loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+  const SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
   const TumSequence sequence(folder);
   MaskFolderSegmenter segmenter(folder);
   const RgbdImages images = sequence.load(0, config.camera.depth_factor);
