@@ -117,6 +117,42 @@ void readOrb(Section s, OrbParams& o) {
   s.rejectUnknownKeys();
 }
 
+void readLines(Section s, LineParams& l) {
+  s.read("detector", l.detector);
+  if (l.detector != "auto" && l.detector != "lsd" && l.detector != "edlines")
+    s.fail("detector", "must be auto, lsd or edlines");
+  s.readPositive("lsd_scale", l.lsd_scale);
+  if (l.lsd_scale > 1.0) s.fail("lsd_scale", "must be <= 1");
+  s.readPositive("merge_angle_deg", l.merge_angle_deg);
+  if (l.merge_angle_deg >= 90.0) s.fail("merge_angle_deg", "must be < 90");
+  s.readPositive("merge_distance_px", l.merge_distance_px);
+  s.read("merge_gap_px", l.merge_gap_px);
+  if (l.merge_gap_px < 0.0) s.fail("merge_gap_px", "must be >= 0");
+  s.readPositive("min_length_px", l.min_length_px);
+  s.read("max_lines", l.max_lines);
+  if (l.max_lines < 0) s.fail("max_lines", "must be >= 0 (0 = all)");
+  s.readPositive("lbd_scale", l.lbd_scale);
+  if (l.lbd_scale > 1.0) s.fail("lbd_scale", "must be <= 1");
+  s.readPositive("lbd_band_width", l.lbd_band_width);
+  s.read("depth_search_px", l.depth_search_px);
+  if (l.depth_search_px < 0 || l.depth_search_px > 10)
+    s.fail("depth_search_px", "must be within [0, 10]");
+  s.readPositive("sigma_px", l.sigma_px);
+  s.readPositive("chi2_inlier", l.chi2_inlier);
+  s.readPositive("ransac_iterations", l.ransac_iterations);
+  s.read("refit_rounds", l.refit_rounds);
+  if (l.refit_rounds < 0) s.fail("refit_rounds", "must be >= 0");
+  s.readPositive("min_inlier_ratio", l.min_inlier_ratio);
+  if (l.min_inlier_ratio > 1.0) s.fail("min_inlier_ratio", "must be <= 1");
+  s.readPositive("min_length_m", l.min_length_m);
+  s.readPositive("max_descriptor_distance", l.max_descriptor_distance);
+  s.readPositive("match_ratio", l.match_ratio);
+  if (l.match_ratio > 1.0) s.fail("match_ratio", "must be <= 1");
+  s.readPositive("match_angle_deg", l.match_angle_deg);
+  s.readPositive("match_distance_px", l.match_distance_px);
+  s.rejectUnknownKeys();
+}
+
 void readTracking(Section s, TrackingParams& t) {
   s.readPositive("search_radius_px", t.search_radius_px);
   s.readPositive("max_descriptor_distance", t.max_descriptor_distance);
@@ -155,6 +191,7 @@ SystemConfig loadConfig(const std::string& path) {
   if (!root["camera"]) top.fail("camera", "section is required");
   readCamera(top.child("camera"), config.camera);
   readOrb(top.child("orb"), config.orb);
+  readLines(top.child("lines"), config.lines);
   readTracking(top.child("tracking"), config.tracking);
   top.rejectUnknownKeys();
   return config;

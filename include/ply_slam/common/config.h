@@ -24,6 +24,31 @@ struct OrbParams {
   int edge_threshold = 19;     // px kept free at the border (descriptor patch)
 };
 
+// Line features (features module): LSD segments, merging, LBD, 3D fitting (PAPER.md §3.1) and
+// matching between frames.
+struct LineParams {
+  std::string detector = "auto";     // "lsd", "edlines", or "auto": LSD where OpenCV has it
+  double lsd_scale = 0.4;            // LSD's Gaussian sub-sampling of the image (1 = full size)
+  double merge_angle_deg = 3.0;      // pieces of one edge: directions within this angle,
+  double merge_distance_px = 2.0;    // endpoints this close to the other piece's line,
+  double merge_gap_px = 20.0;        // and at most this gap between them
+  double min_length_px = 25.0;       // shorter segments (after merging) are dropped
+  int max_lines = 150;               // the longest are kept; 0 = all
+  double lbd_scale = 0.5;            // image scale the LBD descriptors are computed at (1 = full)
+  int lbd_band_width = 7;            // px per band of the LBD descriptor (9 bands), at lbd_scale
+  int depth_search_px = 3;           // px across the line searched where a sample has no depth
+  double sigma_px = 1.0;             // image noise of a sample (Lambda's image terms, px)
+  double chi2_inlier = 5.991;        // Mahalanobis^2 of a sample to the RANSAC line: inlier below
+  int ransac_iterations = 40;        // two-point hypotheses per segment
+  int refit_rounds = 2;              // inliers re-selected with the PCA line (0 = the paper's fit)
+  double min_inlier_ratio = 0.25;    // Th1: inliers / samples along the segment
+  double min_length_m = 0.03;        // Th2: shortest accepted 3D segment (m)
+  int max_descriptor_distance = 80;  // LBD Hamming distance (of 256 bits): match below
+  double match_ratio = 0.9;          // best / second-best distance
+  double match_angle_deg = 10.0;     // gate: projected line vs observed line direction
+  double match_distance_px = 15.0;   // gate: projected endpoints to the observed line
+};
+
 // Tracking (tracking module).
 struct TrackingParams {
   int search_radius_px = 15;            // projection matching window at scale level 0
@@ -46,6 +71,7 @@ struct SystemConfig {
   std::string source_path;  // the file it was loaded from
   PinholeCamera camera;
   OrbParams orb;
+  LineParams lines;
   TrackingParams tracking;
 };
 

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/features/line_3d.h"
+#include "ply_slam/features/line_feature.h"
+
+namespace ply_slam {
+
+// 3D line segments from a 2D segment and a depth image (CV_32F metres, 0 = invalid,
+// registered to the raw rgb image).
+//
+// fitSampled is PAPER.md §3.1: N = min(L_avg, floor(length)), samples j = 0..N spread
+// uniformly between the undistorted endpoints, each back-projected with the depth read at its
+// raw pixel (samples without depth skipped), with covariance J Λ Jᵀ (Λ = diag(σ_px², σ_px²,
+// σ_Z²(Z))); two-point RANSAC with a Mahalanobis inlier test (chi2_inlier); PCA on the largest
+// inlier set; endpoints at the extreme inlier projections; accepted when
+// inliers / (N + 1) > Th1 (min_inlier_ratio) and the 3D length > Th2 (min_length_m).
+// Two additions, both parameters: where a sample's depth is invalid, the nearest valid depth
+// up to depth_search_px across the line; and refit_rounds re-selections of the inliers
+// against the PCA line (0 = the paper's fit exactly).
+// fitEndpoints is the "traditional" method: the two endpoints back-projected with their own
+// depth (found the same way), the same acceptance with the two endpoints as its samples.
+// Not thread-bound: const, no state per call.
+class LineFitter {
+ public:
+  LineFitter(const LineParams& params, const PinholeCamera& camera);
+
+  Line3D fitSampled(const LineFeature& line, const cv::Mat& depth_m, int average_length) const;
+  Line3D fitEndpoints(const LineFeature& line, const cv::Mat& depth_m) const;
+
+  // RANSAC, PCA, endpoints and acceptance on back-projected samples in order along the line
+  // (their covariances beside them); num_samples counts those without depth too.
+  Line3D fitPoints(const std::vector<Eigen::Vector3d>& points,
+                   const std::vector<Eigen::Matrix3d>& covariances, int num_samples) const;
+
+  // Σ = J Λ Jᵀ of the point back-projected from undistorted pixel uv with depth z.
+  Eigen::Matrix3d sampleCovariance(const Eigen::Vector2d& uv, double z) const;
+  // Squared Mahalanobis distance of p (covariance cov) to the line through a with direction d.
+  static double mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& cov,
+                                  const Eigen::Vector3d& a, const Eigen::Vector3d& d);
+  // L_avg = ceil(mean 2D length) of a frame's segments.
+  static int averageLength(const std::vector<LineFeature>& lines);
+
+  // Raw image pixel of an undistorted pixel (the camera's k1 k2 p1 p2 k3).
+  Eigen::Vector2d distort(const Eigen::Vector2d& undistorted) const;
+  // Depth (m) at an undistorted pixel, read at its raw pixel; 0 when invalid.
+  double depthAt(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted) const;
+  // The same, but where it is invalid the depth of the nearest valid pixel up to
+  // depth_search_px away along `across` (unit, undistorted px), either side.
+  double depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted,
+                   const Eigen::Vector2d& across) const;
+
+ private:
+  bool accept(Line3D& line) const;
+
+  LineParams params_;
+  PinholeCamera camera_;
+  double k_[5] = {0, 0, 0, 0, 0};  // k1 k2 p1 p2 k3
+  bool distorted_ = false;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,51 @@
+#include "ply_slam/features/frame_lines.h"
+
+#include "ply_slam/common/stopwatch.h"
+#include "ply_slam/features/line_extractor.h"
+#include "ply_slam/features/line_fitter.h"
+
+namespace ply_slam {
+
+FrameLines FrameLines::extract(const cv::Mat& gray, const cv::Mat& depth_m,
+                               const PinholeCamera& camera, const LineExtractor& extractor,
+                               const LineFitter& fitter, LineFitMethod method,
+                               LineTimings* timings) {
+  FrameLines f;
+  Stopwatch watch;
+  f.lines = extractor.detect(gray, camera);
+  const double extraction_ms = watch.elapsedMs();
+  watch.restart();
+  f.descriptors = extractor.describe(gray, f.lines);
+  const double description_ms = watch.elapsedMs();
+  watch.restart();
+  f.fit(depth_m, fitter, method);
+  if (timings) {
+    timings->extraction_ms = extraction_ms;
+    timings->description_ms = description_ms;
+    timings->fitting_ms = watch.elapsedMs();
+  }
+  return f;
+}
+
+void FrameLines::fit(const cv::Mat& depth_m, const LineFitter& fitter, LineFitMethod method) {
+  CV_Assert(depth_m.type() == CV_32F);
+  average_length = LineFitter::averageLength(lines);
+  lines3d.resize(lines.size());
+  for (size_t i = 0; i < lines.size(); ++i) {
+    lines3d[i] = method == LineFitMethod::kSampled
+                     ? fitter.fitSampled(lines[i], depth_m, average_length)
+                     : fitter.fitEndpoints(lines[i], depth_m);
+  }
+}
+
+size_t FrameLines::numLines3D() const {
+  size_t n = 0;
+  for (const Line3D& l : lines3d) n += l.valid;
+  return n;
+}
+
+double FrameLines::reconstructionRate() const {
+  return lines.empty() ? 0.0 : static_cast<double>(numLines3D()) / lines.size();
+}
+
+}  // namespace ply_slam
