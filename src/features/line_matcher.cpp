@@ -1,5 +1,7 @@
 #include "ply_slam/features/line_matcher.h"
 
+#include "ply_slam/features/best_two.h"
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -50,22 +52,15 @@ std::vector<LineMatch> LineMatcher::matchProjected(const FrameLines& a, const Fr
     const Eigen::Vector3d Ps = T_ba * a.lines3d[i].start, Pe = T_ba * a.lines3d[i].end;
     if (Ps.z() < kMinProjectionDepth || Pe.z() < kMinProjectionDepth) continue;
     const Eigen::Vector2d ps = camera_.project(Ps), pe = camera_.project(Pe);
-    int best = INT_MAX, second = INT_MAX, best_j = -1;
+    BestTwo found;
     for (size_t j = 0; j < b.size(); ++j) {
       if (!withinGates(ps, pe, b.lines[j])) continue;
-      const int distance =
-          hamming(a.descriptors.ptr(static_cast<int>(i)), b.descriptors.ptr(static_cast<int>(j)));
-      if (distance < best) {
-        second = best;
-        best = distance;
-        best_j = static_cast<int>(j);
-      } else if (distance < second) {
-        second = distance;
-      }
+      found.offer(
+          hamming(a.descriptors.ptr(static_cast<int>(i)), b.descriptors.ptr(static_cast<int>(j))),
+          static_cast<long>(j));
     }
-    if (best_j < 0 || best > params_.max_descriptor_distance) continue;
-    if (second != INT_MAX && best > params_.match_ratio * second) continue;
-    candidates.push_back({static_cast<int>(i), best_j, best});
+    if (!found.accept(params_.max_descriptor_distance, params_.match_ratio)) continue;
+    candidates.push_back({static_cast<int>(i), static_cast<int>(found.index), found.best});
   }
   // Each line of B once: the closest descriptor keeps it.
   std::sort(candidates.begin(), candidates.end(), [](const LineMatch& x, const LineMatch& y) {
@@ -106,21 +101,12 @@ std::vector<LineMatch> LineMatcher::matchDescriptors(const FrameLines& a,
   }
   std::vector<LineMatch> matches;
   for (size_t i = 0; i < na; ++i) {
-    int best = INT_MAX, second = INT_MAX, best_j = -1;
-    for (size_t j = 0; j < nb; ++j) {
-      const int distance = distances[i * nb + j];
-      if (distance < best) {
-        second = best;
-        best = distance;
-        best_j = static_cast<int>(j);
-      } else if (distance < second) {
-        second = distance;
-      }
-    }
-    if (best_j < 0 || best > params_.max_descriptor_distance) continue;
-    if (second != INT_MAX && best > params_.match_ratio * second) continue;
+    BestTwo found;
+    for (size_t j = 0; j < nb; ++j) found.offer(distances[i * nb + j], static_cast<long>(j));
+    if (!found.accept(params_.max_descriptor_distance, params_.match_ratio)) continue;
+    const int best_j = static_cast<int>(found.index);
     if (best_a[best_j] != static_cast<int>(i)) continue;
-    matches.push_back({static_cast<int>(i), best_j, best});
+    matches.push_back({static_cast<int>(i), best_j, found.best});
   }
   return matches;
 }

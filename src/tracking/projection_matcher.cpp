@@ -1,5 +1,7 @@
 #include "ply_slam/tracking/projection_matcher.h"
 
+#include "ply_slam/features/best_two.h"
+
 #include <cmath>
 #include <limits>
 
@@ -45,23 +47,17 @@ int ProjectionMatcher::match(Frame& frame, const std::vector<std::shared_ptr<Map
     ++point->visible;
 
     const double radius = params.radius_px * (*f.scales)[level];
-    int best = std::numeric_limits<int>::max(), second = best;
-    long best_index = -1;
+    BestTwo found;
     for (size_t i : f.featuresInArea(uv.x(), uv.y(), radius, level - 1, level + 1)) {
       if (frame.map_points[i] && !assigned_here[i]) continue;  // matched by an earlier stage
       if (f.hasDepth(i) && std::abs(f.depth[i] - pc.z()) > params.depth_gate * pc.z() + 0.05)
         continue;
-      const int d = descriptorDistance(point->descriptor, f.descriptors.row(static_cast<int>(i)));
-      if (d < best) {
-        second = best;
-        best = d;
-        best_index = static_cast<long>(i);
-      } else if (d < second) {
-        second = d;
-      }
+      found.offer(descriptorDistance(point->descriptor, f.descriptors.row(static_cast<int>(i))),
+                  static_cast<long>(i));
     }
-    if (best_index < 0 || best > params.max_distance) continue;
-    if (second != std::numeric_limits<int>::max() && best > params.nn_ratio * second) continue;
+    if (!found.accept(params.max_distance, params.nn_ratio)) continue;
+    const long best_index = found.index;
+    const int best = found.best;
     if (best >= assigned_distance[best_index]) continue;
     if (!assigned_here[best_index]) ++matches;
     assigned_distance[best_index] = best;
