@@ -88,7 +88,6 @@ TrackingResult Tracker::track(Frame& frame) {
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
       result.inliers = inliers;
-      frame.features.depth_image.release();
       if (needKeyFrame(frame, inliers)) {
         createKeyFrame(frame);
         result.new_keyframe = last_keyframe_;
@@ -110,7 +109,6 @@ bool Tracker::initialise(Frame& frame) {
   for (size_t i = 0; i < frame.features.size(); ++i) with_depth += frame.features.hasDepth(i);
   if (with_depth < 2 * config_.tracking.min_tracked_points) return false;
   frame.T_cw = Eigen::Isometry3d::Identity();
-  frame.features.depth_image.release();
   createKeyFrame(frame);
   state_ = TrackingState::kOk;
   has_velocity_ = false;
@@ -311,6 +309,7 @@ void Tracker::createKeyFrame(Frame& frame) {
   kf->stamp = frame.stamp;
   kf->T_cw = frame.T_cw;
   kf->features = frame.features;
+  kf->features.depth_image.release();  // the image stays with the frame only while it is tracked
   kf->map_points.resize(frame.features.size());
   map_.addKeyFrame(kf);
 
