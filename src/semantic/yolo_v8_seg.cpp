@@ -1,0 +1,159 @@
+#include "ply_slam/semantic/yolo_v8_seg.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace ply_slam {
+namespace {
+
+constexpr int kBoxRows = 4;  // cx, cy, w, h in input pixels
+constexpr int kMaskCoefficients = 32;
+
+// How the image was placed into the network input: scaled by `scale`, shifted by `offset`.
+struct Letterbox {
+  double scale = 1.0;
+  cv::Point2d offset;
+};
+
+Letterbox letterbox(const cv::Mat& bgr, int width, int height, cv::Mat& input) {
+  Letterbox lb;
+  lb.scale =
+      std::min(static_cast<double>(width) / bgr.cols, static_cast<double>(height) / bgr.rows);
+  const int w = static_cast<int>(std::round(bgr.cols * lb.scale));
+  const int h = static_cast<int>(std::round(bgr.rows * lb.scale));
+  lb.offset = {(width - w) / 2.0, (height - h) / 2.0};
+  input = cv::Mat(height, width, CV_8UC3, cv::Scalar(114, 114, 114));
+  cv::Mat resized;
+  cv::resize(bgr, resized, {w, h}, 0, 0, cv::INTER_LINEAR);
+  resized.copyTo(input(cv::Rect(static_cast<int>(std::floor(lb.offset.x)),
+                                static_cast<int>(std::floor(lb.offset.y)), w, h)));
+  lb.offset = {std::floor(lb.offset.x), std::floor(lb.offset.y)};
+  return lb;
+}
+
+std::vector<std::string> readClassNames(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read the class names");
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) names.push_back(line);
+  }
+  if (names.empty()) throw std::runtime_error(path + ": no class names");
+  return names;
+}
+
+}  // namespace
+
+YoloV8Seg::YoloV8Seg(const YoloParams& params) : params_(params) {
+  if (!std::filesystem::exists(params_.model_path))
+    throw std::runtime_error(params_.model_path + ": YOLOv8-seg model file missing");
+  try {
+    net_ = cv::dnn::readNetFromONNX(params_.model_path);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error(params_.model_path + ": OpenCV cannot load the model: " + e.what());
+  }
+  if (net_.empty()) throw std::runtime_error(params_.model_path + ": OpenCV loaded an empty net");
+  net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+  net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  class_names_ = readClassNames(params_.class_names_path);
+}
+
+std::vector<Instance> YoloV8Seg::segment(const RgbdImages& images) {
+  const cv::Mat& bgr = images.rgb;
+  if (bgr.empty() || bgr.type() != CV_8UC3)
+    throw std::runtime_error("YOLOv8-seg needs an 8-bit colour image");
+  cv::Mat input;
+  const Letterbox lb = letterbox(bgr, params_.input_width, params_.input_height, input);
+  net_.setInput(cv::dnn::blobFromImage(input, 1.0 / 255.0, cv::Size(), cv::Scalar(), true, false));
+  std::vector<cv::Mat> outs;
+  try {
+    net_.forward(outs, std::vector<std::string>{"output0", "output1"});
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error(params_.model_path + ": forward pass failed (is the input size " +
+                             std::to_string(params_.input_width) + "x" +
+                             std::to_string(params_.input_height) + " the export's?): " + e.what());
+  }
+  // output0: [1, 4 + classes + 32, anchors]; output1: [1, 32, H/4, W/4].
+  const cv::Mat& det = outs[0];
+  const cv::Mat& protos = outs[1];
+  const int rows = det.size[1], anchors = det.size[2];
+  const int num_classes = rows - kBoxRows - kMaskCoefficients;
+  if (det.dims != 3 || protos.dims != 4 || num_classes <= 0 ||
+      num_classes != static_cast<int>(class_names_.size()))
+    throw std::runtime_error(params_.model_path + ": unexpected output shapes for " +
+                             std::to_string(class_names_.size()) + " classes");
+  const cv::Mat table(rows, anchors, CV_32F, const_cast<float*>(det.ptr<float>()));
+
+  std::vector<cv::Rect2d> boxes;
+  std::vector<float> scores;
+  std::vector<int> classes, anchor_of;
+  for (int a = 0; a < anchors; ++a) {
+    int best_class = 0;
+    float best = 0.f;
+    for (int c = 0; c < num_classes; ++c) {
+      const float s = table.at<float>(kBoxRows + c, a);
+      if (s > best) {
+        best = s;
+        best_class = c;
+      }
+    }
+    if (best < params_.score_threshold) continue;
+    const float cx = table.at<float>(0, a), cy = table.at<float>(1, a);
+    const float w = table.at<float>(2, a), h = table.at<float>(3, a);
+    boxes.emplace_back(cx - w / 2, cy - h / 2, w, h);
+    scores.push_back(best);
+    classes.push_back(best_class);
+    anchor_of.push_back(a);
+  }
+  // Class-aware NMS: boxes of different classes never suppress each other.
+  // (OpenCV 4.6 has no NMSBoxesBatched: each class is shifted far away from the others.)
+  std::vector<cv::Rect2d> shifted = boxes;
+  const double shift = 4.0 * std::max(params_.input_width, params_.input_height);
+  for (size_t i = 0; i < shifted.size(); ++i) shifted[i].x += classes[i] * shift;
+  std::vector<int> keep;
+  cv::dnn::NMSBoxes(shifted, scores, params_.score_threshold, params_.nms_threshold, keep);
+
+  const int ph = protos.size[2], pw = protos.size[3];
+  const cv::Mat proto_matrix(kMaskCoefficients, ph * pw, CV_32F,
+                             const_cast<float*>(protos.ptr<float>()));
+  const double proto_scale = static_cast<double>(pw) / params_.input_width;
+  std::vector<Instance> instances;
+  int next_id = 1;
+  for (int k : keep) {
+    cv::Mat coefficients(1, kMaskCoefficients, CV_32F);
+    for (int m = 0; m < kMaskCoefficients; ++m)
+      coefficients.at<float>(0, m) = table.at<float>(kBoxRows + num_classes + m, anchor_of[k]);
+    const cv::Mat logits = cv::Mat(coefficients * proto_matrix).reshape(1, ph);
+    // sigmoid(x) > t  <=>  x > log(t / (1 - t)): threshold the logits directly.
+    const float logit_threshold = std::log(params_.mask_threshold / (1.f - params_.mask_threshold));
+
+    // The box in the image, and the same box in prototype and input coordinates.
+    const cv::Rect2d& b = boxes[k];
+    const cv::Rect2d in_image((b.x - lb.offset.x) / lb.scale, (b.y - lb.offset.y) / lb.scale,
+                              b.width / lb.scale, b.height / lb.scale);
+    const cv::Rect image_box = cv::Rect(in_image) & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    if (image_box.area() <= 0) continue;
+
+    // Sample the prototype logits straight at the box's image pixels (pixel centres):
+    // proto = (image * letterbox scale + letterbox offset) * proto_scale.
+    const double s_img = lb.scale * proto_scale;
+    const cv::Matx23d image_to_proto(
+        s_img, 0, (image_box.x + 0.5) * s_img + lb.offset.x * proto_scale - 0.5, 0, s_img,
+        (image_box.y + 0.5) * s_img + lb.offset.y * proto_scale - 0.5);
+    cv::Mat box_logits;
+    cv::warpAffine(logits, box_logits, image_to_proto, image_box.size(),
+                   cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
+    cv::Mat mask = cv::Mat::zeros(bgr.size(), CV_8UC1);
+    mask(image_box).setTo(255, box_logits > logit_threshold);
+    if (cv::countNonZero(mask) == 0) continue;
+    instances.push_back({next_id++, class_names_[classes[k]], scores[k], mask});
+  }
+  return instances;
+}
+
+}  // namespace ply_slam
