@@ -1,0 +1,49 @@
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "ply_slam/dynamic/delaunay_consistency.h"
+
+namespace ply_slam {
+
+struct DynamicFilterParams {
+  DelaunayConsistencyParams consistency;
+  double weight_threshold = 0.5;  // w_th: a feature with a larger dynamic weight is in DP
+  double active_degree = 0.2;     // Th_min: r_d above which an active-class instance is dynamic
+  double passive_degree = 0.5;    // Th_max: the stricter bound for passive classes
+};
+
+// Which instance class kind moves (PAPER.md §3.2).
+enum class ClassMotion { kStatic, kPassive, kActive };
+
+struct DynamicDecision {
+  std::vector<double> weight;       // per feature, from the Delaunay check
+  std::vector<bool> dynamic;        // per feature: leave it out of pose estimation
+  std::map<int, double> degree;     // instance id -> r_d = w_lab / N_all
+  std::set<int> dynamic_instances;  // instances judged moving as a whole
+};
+
+// Fuses the geometric evidence with instance labels: features whose Delaunay weight exceeds
+// w_th form DP; each instance's dynamic degree r_d is its share of features in DP; an active
+// instance (people, animals, vehicles) with r_d > Th_min, or a passive one (chairs, bags…)
+// with r_d > Th_max, is dynamic as a whole. Static classes are never dropped as a whole.
+// Features in DP are dropped wherever they are, labelled or not.
+class DynamicFeatureFilter {
+ public:
+  DynamicFeatureFilter(const DepthNoiseModel& noise, const DynamicFilterParams& params)
+      : consistency_(noise, params.consistency), params_(params) {}
+
+  // instance[i]: the instance id under feature i, or 0; motion: class kind per instance id.
+  DynamicDecision decide(const std::vector<FeatureCorrespondence>& features,
+                         const std::vector<int>& instance, const std::map<int, ClassMotion>& motion,
+                         int width, int height) const;
+
+ private:
+  DelaunayConsistency consistency_;
+  DynamicFilterParams params_;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,34 @@
+#include "ply_slam/dynamic/dynamic_feature_filter.h"
+
+namespace ply_slam {
+
+DynamicDecision DynamicFeatureFilter::decide(const std::vector<FeatureCorrespondence>& features,
+                                             const std::vector<int>& instance,
+                                             const std::map<int, ClassMotion>& motion, int width,
+                                             int height) const {
+  DynamicDecision d;
+  d.weight = consistency_.weights(features, width, height);
+  d.dynamic.assign(features.size(), false);
+
+  std::map<int, int> all, voted;  // per instance: N_all and w_lab
+  for (size_t i = 0; i < features.size(); ++i) {
+    const bool in_dp = d.weight[i] > params_.weight_threshold;
+    d.dynamic[i] = in_dp;
+    if (instance[i] == 0) continue;
+    ++all[instance[i]];
+    voted[instance[i]] += in_dp;
+  }
+  for (const auto& [id, n] : all) {
+    const double degree = static_cast<double>(voted[id]) / n;
+    d.degree[id] = degree;
+    const auto kind = motion.count(id) ? motion.at(id) : ClassMotion::kStatic;
+    if ((kind == ClassMotion::kActive && degree > params_.active_degree) ||
+        (kind == ClassMotion::kPassive && degree > params_.passive_degree))
+      d.dynamic_instances.insert(id);
+  }
+  for (size_t i = 0; i < features.size(); ++i)
+    if (instance[i] != 0 && d.dynamic_instances.count(instance[i])) d.dynamic[i] = true;
+  return d;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,148 @@
+// The Delaunay topology check and the label dynamic degree (PAPER.md §3.2) on scenes with a
+// known moving object: a static background and a cluster that moves between the frames.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <iostream>
+#include <random>
+
+#include "ply_slam/dynamic/dynamic_feature_filter.h"
+
+namespace ply_slam {
+namespace {
+
+PinholeCamera camera() {
+  PinholeCamera c;
+  c.fx = c.fy = 525.0;
+  c.cx = 319.5;
+  c.cy = 239.5;
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
+
+struct Scene {
+  std::vector<FeatureCorrespondence> features;
+  std::vector<int> instance;  // 1 = the object, 2 = a static object, 0 = background
+  std::vector<bool> moving;
+};
+
+// Background points 2-4 m away and an object of 60 points around (0.3, 0, 1.5) m, which moves
+// by `object_motion` between the frames; the camera itself moves by a small rigid motion.
+Scene makeScene(const Eigen::Vector3d& object_motion, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  const PinholeCamera cam = camera();
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous -> current camera
+  motion.linear() = Eigen::AngleAxisd(0.03, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).matrix();
+  motion.translation() = Eigen::Vector3d(0.02, -0.01, 0.03);
+  Scene s;
+  auto add = [&](const Eigen::Vector3d& p_prev, int id, bool moves) {
+    Eigen::Vector3d p_cur = motion * (p_prev + (moves ? object_motion : Eigen::Vector3d::Zero()));
+    FeatureCorrespondence f;
+    f.previous = p_prev + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    f.current = p_cur + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    f.pixel = cam.project(p_cur);
+    if (!cam.inImage(f.pixel, 5)) return;
+    s.features.push_back(f);
+    s.instance.push_back(id);
+    s.moving.push_back(moves);
+  };
+  for (int i = 0; i < 400; ++i) add({1.6 * u(rng), 1.2 * u(rng), 3.0 + u(rng)}, 0, false);
+  for (int i = 0; i < 60; ++i)
+    add(Eigen::Vector3d(0.3, 0.0, 1.5) + 0.15 * Eigen::Vector3d(u(rng), 2 * u(rng), 0.3 * u(rng)),
+        1, true);
+  for (int i = 0; i < 40; ++i)
+    add(Eigen::Vector3d(-0.5, 0.3, 2.0) + 0.15 * Eigen::Vector3d(u(rng), u(rng), 0.3 * u(rng)), 2,
+        false);
+  return s;
+}
+
+DepthNoiseModel noise() {
+  DepthNoiseModel n;
+  n.alpha = 2.5e-5;
+  n.gamma = 1e-5;
+  return n;
+}
+
+TEST(DelaunayConsistency, MovingObjectGetsHighWeightsStaticLow) {
+  // 0.16 m between the compared frames: a person walking 1.2 m/s, frames 4 apart.
+  const Scene s = makeScene({0.15, 0.0, 0.05}, 1);
+  const DelaunayConsistency check(noise(), {});
+  const auto w = check.weights(s.features, 640, 480);
+  double moving = 0;
+  int n_moving = 0, n_still = 0, still_in_dp = 0;
+  for (size_t i = 0; i < w.size(); ++i) {
+    if (s.moving[i]) {
+      moving += w[i];
+      ++n_moving;
+    } else {
+      ++n_still;
+      still_in_dp += w[i] > 0.5;
+    }
+  }
+  ASSERT_GT(n_moving, 30);
+  // Inside the object most edges stay rigid; its border edges to the background break, and a
+  // broken edge blames both ends, so background neighbours of the object get weight too.
+  // Issue #5 allows at most 10 % of static features dropped.
+  std::cout << "[ measured ] mean weight on the object " << moving / n_moving << ", static in DP "
+            << still_in_dp << " of " << n_still << "\n";
+  EXPECT_GT(moving / n_moving, 0.25);
+  EXPECT_LE(still_in_dp, 0.10 * n_still);
+}
+
+TEST(DelaunayConsistency, StaticSceneIsConsistent) {
+  const Scene s = makeScene(Eigen::Vector3d::Zero(), 2);
+  const auto w = DelaunayConsistency(noise(), {}).weights(s.features, 640, 480);
+  int high = 0;
+  for (double x : w) high += x > 0.5;
+  EXPECT_EQ(high, 0);
+}
+
+TEST(DynamicFeatureFilter, ActiveInstanceDroppedWholePassiveAndStaticKept) {
+  const Scene s = makeScene({0.15, 0.0, 0.05}, 3);
+  const DynamicFeatureFilter filter(noise(), {});
+  // The moving object labelled person (active): all of its features go.
+  auto d = filter.decide(s.features, s.instance,
+                         {{1, ClassMotion::kActive}, {2, ClassMotion::kPassive}}, 640, 480);
+  ASSERT_TRUE(d.dynamic_instances.count(1)) << "r_d " << d.degree[1];
+  EXPECT_FALSE(d.dynamic_instances.count(2));
+  int static_dropped = 0, static_total = 0;
+  for (size_t i = 0; i < s.features.size(); ++i) {
+    if (s.moving[i]) {
+      EXPECT_TRUE(d.dynamic[i]) << "feature " << i << " on the moving person";
+    } else {
+      ++static_total;
+      static_dropped += d.dynamic[i];
+    }
+  }
+  EXPECT_LE(static_dropped, 0.05 * static_total);
+
+  // The same object labelled as a static class is never dropped as a whole; only its features
+  // whose own weight is high go.
+  d = filter.decide(s.features, s.instance, {{1, ClassMotion::kStatic}}, 640, 480);
+  EXPECT_FALSE(d.dynamic_instances.count(1));
+  int kept_on_object = 0;
+  for (size_t i = 0; i < s.features.size(); ++i) kept_on_object += s.moving[i] && !d.dynamic[i];
+  EXPECT_GT(kept_on_object, 0);
+}
+
+TEST(DynamicFeatureFilter, StaticSceneKeepsEverything) {
+  const Scene s = makeScene(Eigen::Vector3d::Zero(), 4);
+  const auto d = DynamicFeatureFilter(noise(), {})
+                     .decide(s.features, s.instance,
+                             {{1, ClassMotion::kActive}, {2, ClassMotion::kPassive}}, 640, 480);
+  EXPECT_TRUE(d.dynamic_instances.empty());
+  int dropped = 0;
+  for (bool x : d.dynamic) dropped += x;
+  EXPECT_EQ(dropped, 0);
+}
+
+}  // namespace
+}  // namespace ply_slam
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
