@@ -118,6 +118,10 @@ void readOrb(Section s, OrbParams& o) {
 }
 
 void readLines(Section s, LineParams& l) {
+  s.read("enabled", l.enabled);
+  s.read("balance", l.balance);
+  if (l.balance != "paper" && l.balance != "one") s.fail("balance", "must be paper or one");
+  s.readPositive("residual_sigma_px", l.residual_sigma_px);
   s.read("detector", l.detector);
   if (l.detector != "auto" && l.detector != "lsd" && l.detector != "edlines")
     s.fail("detector", "must be auto, lsd or edlines");

@@ -106,4 +106,28 @@ size_t Map::numMapPoints() const {
   return points_.size();
 }
 
+std::shared_ptr<MapLine> Map::createMapLine(const Eigen::Vector3d& start,
+                                            const Eigen::Vector3d& end, const cv::Mat& descriptor,
+                                            long keyframe_id) {
+  auto line = std::make_shared<MapLine>();
+  line->start = start;
+  line->end = end;
+  line->descriptor = descriptor.clone();
+  line->first_keyframe_id = keyframe_id;
+  std::lock_guard<std::mutex> lock(mutex_);
+  line->id = next_line_id_++;
+  lines_.push_back(line);
+  return line;
+}
+
+std::vector<std::shared_ptr<MapLine>> Map::mapLines() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return lines_;
+}
+
+size_t Map::numMapLines() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return lines_.size();
+}
+
 }  // namespace ply_slam

@@ -1,6 +1,7 @@
 #include "ply_slam/system/system.h"
 
 #include <cmath>
+#include <future>
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/stopwatch.h"
@@ -31,7 +32,12 @@ System::System(const SystemConfig& config)
     : config_(config),
       extractor_(config.orb),
       tracker_(config_, map_, extractor_.scales()),
-      mapper_(config_, map_) {}
+      mapper_(config_, map_) {
+  if (config_.lines.enabled) {
+    line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
+    line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
+  }
+}
 
 void System::validate(const RgbdImages& images) const {
   const auto& cam = config_.camera;
@@ -69,12 +75,24 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   Stopwatch total;
   cv::Mat gray;
   cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+  // Lines (when enabled) on a second thread beside ORB: neither needs the other.
+  std::future<FrameLines> lines;
+  if (line_extractor_) {
+    lines = std::async(std::launch::async, [&] {
+      Stopwatch watch;
+      FrameLines f =
+          FrameLines::extract(gray, images.depth, config_.camera, *line_extractor_, *line_fitter_);
+      result.timing.lines_ms = watch.elapsedMs();
+      return f;
+    });
+  }
   Frame frame(
       result.frame_id, images.stamp,
       FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
                              images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
   result.dynamic_features = dropDynamicFeatures(frame.features, instances);
   result.timing.features_ms = total.elapsedMs();
+  if (lines.valid()) frame.setLines(lines.get());
 
   Stopwatch tracking;
   result.tracking = tracker_.track(frame);

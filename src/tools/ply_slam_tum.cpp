@@ -1,5 +1,6 @@
 // Offline run of ply_slam on a TUM RGB-D folder:
 //   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks] [--max-frames N]
+//                [--no-lines]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
 // trajectory.png into DIR.
 #include <sys/resource.h>
@@ -29,12 +30,14 @@ struct Options {
   std::string sequence, config, out;
   long max_frames = -1;
   std::string segmenter = "none";
+  bool no_lines = false;  // overrides lines.enabled of the config
 };
 
 [[noreturn]] void usage(const std::string& error) {
   std::cerr << "ply_slam_tum: " << error << "\n"
             << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
-               " [--segmenter none|masks] [--max-frames N]\n"
+               " [--segmenter none|masks] [--max-frames N] [--no-lines]\n"
+               "  --no-lines: points only, whatever lines.enabled says\n"
                "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n";
   std::exit(2);
 }
@@ -43,6 +46,10 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--no-lines") {
+      o.no_lines = true;
+      continue;
+    }
     if (i + 1 >= argc) usage("missing value after " + arg);
     const std::string value = argv[++i];
     if (arg == "--sequence")
@@ -95,7 +102,8 @@ std::string jsonStats(const ErrorStats& s) {
 }
 
 int run(const Options& options) {
-  const SystemConfig config = loadConfig(options.config);
+  SystemConfig config = loadConfig(options.config);
+  if (options.no_lines) config.lines.enabled = false;
   const TumSequence sequence(options.sequence);
   fs::create_directories(options.out);
   const fs::path out(options.out);
@@ -106,8 +114,10 @@ int run(const Options& options) {
   System system(config);
   std::ofstream timing(out / "timing.csv");
   timing
-      << "frame,stamp,state,method,inliers,keyframe,features_ms,tracking_ms,mapping_ms,total_ms\n";
-  std::vector<double> total_ms;
+      << "frame,stamp,state,method,inliers,line_inliers,keyframe,features_ms,lines_ms,tracking_ms,"
+         "mapping_ms,total_ms\n";
+  std::vector<double> total_ms, lines_ms;
+  double line_inliers = 0.0;
   size_t dynamic_features = 0;
   long frames = 0, lost = 0;
   const size_t n = options.max_frames >= 0
@@ -127,12 +137,15 @@ int run(const Options& options) {
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     total_ms.push_back(r.timing.total_ms);
+    lines_ms.push_back(r.timing.lines_ms);
+    line_inliers += r.tracking.line_inliers;
     dynamic_features += r.dynamic_features;
     timing << r.frame_id << ',' << std::fixed << std::setprecision(6) << r.stamp << ','
            << toString(r.tracking.state) << ',' << r.tracking.method << ',' << r.tracking.inliers
-           << ',' << (r.tracking.new_keyframe != nullptr) << ',' << std::setprecision(3)
-           << r.timing.features_ms << ',' << r.timing.tracking_ms << ',' << r.timing.mapping_ms
-           << ',' << r.timing.total_ms << '\n';
+           << ',' << r.tracking.line_inliers << ',' << (r.tracking.new_keyframe != nullptr) << ','
+           << std::setprecision(3) << r.timing.features_ms << ',' << r.timing.lines_ms << ','
+           << r.timing.tracking_ms << ',' << r.timing.mapping_ms << ',' << r.timing.total_ms
+           << '\n';
   }
 
   writeTumTrajectory((out / "CameraTrajectory.txt").string(), system.cameraTrajectory());
@@ -146,6 +159,12 @@ int run(const Options& options) {
        << ",\n  \"map_points\": " << system.map().numMapPoints() << ",\n"
        << "  \"segmenter\": \"" << options.segmenter << "\",\n"
        << "  \"dynamic_features_dropped\": " << dynamic_features << ",\n"
+       << "  \"lines\": {\"enabled\": " << (config.lines.enabled ? "true" : "false")
+       << ", \"balance\": \"" << config.lines.balance
+       << "\", \"map_lines\": " << system.map().numMapLines()
+       << ", \"line_inliers_mean\": " << (frames > 0 ? line_inliers / frames : 0.0)
+       << ", \"lines_ms_median\": " << percentile(lines_ms, 0.5)
+       << ", \"lines_ms_p95\": " << percentile(lines_ms, 0.95) << "},\n"
        << "  \"tracking_ms_median\": " << percentile(total_ms, 0.5) << ",\n"
        << "  \"tracking_ms_p95\": " << percentile(total_ms, 0.95) << ",\n"
        << "  \"peak_rss_mb\": " << peakRssMb();

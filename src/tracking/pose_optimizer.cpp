@@ -39,9 +39,49 @@ struct FixedPointCost {
   const PinholeCamera& cam;
 };
 
+// Endpoint-to-line distances of the projected 3D segment (PAPER.md §3), whitened and scaled
+// by sqrt(F) so that the squared norm is F e_l' B^-1 e_l.
+struct FixedLineCost {
+  FixedLineCost(const LineObservation& o, const PinholeCamera& c, double weight)
+      : obs(o), cam(c), scale(std::sqrt(weight) / o.pixel_sigma) {}
+
+  template <typename T>
+  bool endpoint(const T* pose, const Eigen::Vector3d& P, T* out) const {
+    const T w[3] = {T(P.x()), T(P.y()), T(P.z())};
+    T p[3];
+    ceres::AngleAxisRotatePoint(pose, w, p);
+    p[0] += pose[3];
+    p[1] += pose[4];
+    p[2] += pose[5];
+    if (p[2] < T(PointResidual::kMinDepth)) {
+      *out = T(PointResidual::kBehindCameraResidual);
+      return true;
+    }
+    const T u = T(cam.fx) * p[0] / p[2] + T(cam.cx);
+    const T v = T(cam.fy) * p[1] / p[2] + T(cam.cy);
+    *out = (T(obs.line.x()) * u + T(obs.line.y()) * v + T(obs.line.z())) * T(scale);
+    return true;
+  }
+
+  template <typename T>
+  bool operator()(const T* pose, T* out) const {
+    endpoint(pose, obs.start, out);
+    endpoint(pose, obs.end, out + 1);
+    return true;
+  }
+
+  const LineObservation obs;
+  const PinholeCamera& cam;
+  const double scale;
+};
+
 bool usesDepth(const PointObservation& o) { return o.depth > 0.0 && o.depth_sigma > 0.0; }
 
 }  // namespace
+
+double lineBalanceFactor(LineBalance balance, int num_points) {
+  return balance == LineBalance::kPaper ? 2.0 * num_points / 50.0 : 1.0;
+}
 
 PoseOptimizer::PoseOptimizer(const PinholeCamera& camera, const PoseOptimizerParams& params)
     : camera_(camera), params_(params) {}
@@ -56,13 +96,34 @@ double PoseOptimizer::squaredError(const PointObservation& o, const Eigen::Isome
   return e_pixel + e_depth * e_depth;
 }
 
+double PoseOptimizer::squaredLineError(const LineObservation& o,
+                                       const Eigen::Isometry3d& T_cw) const {
+  const Eigen::Vector3d ps = T_cw * o.start, pe = T_cw * o.end;
+  if (ps.z() <= 1e-6 || pe.z() <= 1e-6) return std::numeric_limits<double>::infinity();
+  const double es = o.line.dot(camera_.project(ps).homogeneous());
+  const double ee = o.line.dot(camera_.project(pe).homogeneous());
+  return (es * es + ee * ee) / (o.pixel_sigma * o.pixel_sigma);
+}
+
 int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
                             Eigen::Isometry3d& T_cw, std::vector<bool>& inlier) const {
+  std::vector<bool> line_inlier;
+  return optimize(observations, {}, 1.0, T_cw, inlier, line_inlier);
+}
+
+int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
+                            const std::vector<LineObservation>& lines, double line_weight,
+                            Eigen::Isometry3d& T_cw, std::vector<bool>& inlier,
+                            std::vector<bool>& line_inlier) const {
   inlier.assign(observations.size(), true);
-  if (observations.empty()) return 0;
+  line_inlier.assign(lines.size(), true);
+  if (observations.empty() && lines.empty()) return 0;
   // Landmarks behind the camera at the start cannot be reprojected: outliers from the outset.
   for (size_t i = 0; i < observations.size(); ++i)
     inlier[i] = (T_cw * observations[i].world).z() > PointResidual::kMinDepth;
+  for (size_t k = 0; k < lines.size(); ++k)
+    line_inlier[k] = (T_cw * lines[k].start).z() > PointResidual::kMinDepth &&
+                     (T_cw * lines[k].end).z() > PointResidual::kMinDepth;
 
   Se3Params pose = toParams(T_cw);
 
@@ -93,8 +154,18 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
       }
       ++used;
     }
-    if (used < 3) {  // too few to fix six degrees of freedom: nothing fits
+    int used_lines = 0;
+    for (size_t k = 0; k < lines.size(); ++k) {
+      if (!line_inlier[k]) continue;
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FixedLineCost, 2, 6>(
+                                   new FixedLineCost(lines[k], camera_, line_weight)),
+                               new ceres::HuberLoss(std::sqrt(params_.chi2_pixel)), pose.data());
+      ++used_lines;
+    }
+    // Each point or line gives two constraints at least.
+    if (used + used_lines < 3) {  // too few to fix six degrees of freedom: nothing fits
       inlier.assign(observations.size(), false);
+      line_inlier.assign(lines.size(), false);
       num_inliers = 0;
       break;
     }
@@ -111,6 +182,11 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
       changed |= ok != inlier[i];
       inlier[i] = ok;
       num_inliers += ok;
+    }
+    for (size_t k = 0; k < lines.size(); ++k) {
+      const bool ok = squaredLineError(lines[k], T) < params_.chi2_pixel;
+      changed |= ok != line_inlier[k];
+      line_inlier[k] = ok;
     }
     if (!changed && round > 0) break;
   }

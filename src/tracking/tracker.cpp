@@ -4,13 +4,17 @@
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
+#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/features2d.hpp>
+
+#include "ply_slam/features/best_two.h"
 
 namespace ply_slam {
 namespace {
 
 constexpr int kMinPnpMatches = 15;
 constexpr double kMaxVelocityGap = 0.2;  // s; beyond, the last motion says little
+constexpr double kMinLineDepth = 0.05;   // m; line endpoints nearer (or behind) do not project
 
 PoseOptimizerParams optimizerParams(const TrackingParams& t) {
   PoseOptimizerParams p;
@@ -43,7 +47,8 @@ Tracker::Tracker(const SystemConfig& config, Map& map, const std::vector<double>
       map_(map),
       scales_(scales),
       optimizer_(config.camera, optimizerParams(config.tracking)),
-      matcher_(config_.camera, std::log(config.orb.scale_factor), config.orb.num_levels) {}
+      matcher_(config_.camera, std::log(config.orb.scale_factor), config.orb.num_levels),
+      line_balance_(config.lines.balance == "one" ? LineBalance::kOne : LineBalance::kPaper) {}
 
 TrackingResult Tracker::track(Frame& frame) {
   TrackingResult result;
@@ -74,11 +79,13 @@ TrackingResult Tracker::track(Frame& frame) {
       const CameraVelocity velocity =
           CameraVelocity::between(last_frame_->T_cw, frame.T_cw, frame.stamp - last_frame_->stamp);
       frame.features.correctMotion(config_.camera, &velocity);
-      ok = optimizePose(frame) >= config_.tracking.min_tracked_points;
+      const int corrected = optimizePose(frame);  // first: it classifies the lines too
+      ok = corrected + frame.numLineMatches() >= config_.tracking.min_tracked_points;
     }
     if (ok) {
       inliers = trackLocalMap(frame);
-      ok = inliers >= config_.tracking.min_tracked_points;
+      // Line inliers count as tracked features too (none when lines are disabled).
+      ok = inliers + frame.numLineMatches() >= config_.tracking.min_tracked_points;
     }
     if (ok) {
       // A velocity needs two consecutive tracked frames close enough in time.
@@ -88,6 +95,7 @@ TrackingResult Tracker::track(Frame& frame) {
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
       result.inliers = inliers;
+      result.line_inliers = frame.numLineMatches();
       if (needKeyFrame(frame, inliers)) {
         createKeyFrame(frame);
         result.new_keyframe = last_keyframe_;
@@ -139,8 +147,10 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
     params.radius_px *= 2;  // fast motion: a wider window
     matches = matcher_.match(frame, points, &levels, params);
   }
-  if (matches < config_.tracking.min_tracked_points) return false;
-  return optimizePose(frame) >= config_.tracking.min_tracked_points;
+  const int line_matches = config_.lines.enabled ? matchLines(frame, local_lines_) : 0;
+  if (matches + line_matches < config_.tracking.min_tracked_points) return false;
+  const int inliers = optimizePose(frame);  // first: it classifies the lines too
+  return inliers + frame.numLineMatches() >= config_.tracking.min_tracked_points;
 }
 
 bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates) {
@@ -235,6 +245,83 @@ void Tracker::updateLocalMap(const Frame& frame) {
       local_points_.push_back(p);
     }
   }
+  local_lines_.clear();
+  if (!config_.lines.enabled) return;
+  for (KeyFrame* kf : chosen) {
+    for (const auto& l : kf->map_lines) {
+      if (!l || l->bad || l->local_map_frame == frame.id) continue;
+      l->local_map_frame = frame.id;
+      local_lines_.push_back(l);
+    }
+  }
+}
+
+int Tracker::matchLines(Frame& frame,
+                        const std::vector<std::shared_ptr<MapLine>>& candidates) const {
+  std::fill(frame.map_lines.begin(), frame.map_lines.end(), nullptr);
+  std::fill(frame.line_outlier.begin(), frame.line_outlier.end(), false);
+  const FrameLines& f = frame.lines;
+  if (f.size() == 0 || candidates.empty()) return 0;
+  struct Candidate {
+    int distance;
+    size_t line, landmark;
+  };
+  std::vector<Candidate> found_pairs;
+  const auto& p = config_.lines;
+  // The frame's lines once: homogeneous line, direction, extent (LineMatcher::withinGates
+  // does the same per pair).
+  struct Observed {
+    Eigen::Vector3d l;
+    Eigen::Vector2d d, start, end;
+  };
+  std::vector<Observed> observed(f.size());
+  for (size_t j = 0; j < f.size(); ++j)
+    observed[j] = {f.lines[j].line(), f.lines[j].direction(), f.lines[j].start, f.lines[j].end};
+  const double cos_max_angle = std::cos(p.match_angle_deg * M_PI / 180.0);
+  const double margin = 2.0 * p.match_distance_px;
+  const auto& cam = config_.camera;
+  for (size_t m = 0; m < candidates.size(); ++m) {
+    const MapLine& l = *candidates[m];
+    if (l.bad) continue;
+    const Eigen::Vector3d Ps = frame.T_cw * l.start, Pe = frame.T_cw * l.end;
+    if (Ps.z() < kMinLineDepth || Pe.z() < kMinLineDepth) continue;
+    const Eigen::Vector2d ps = cam.project(Ps), pe = cam.project(Pe);
+    // Both ends off the same side of the image: not in view.
+    if ((ps.x() < -margin && pe.x() < -margin) || (ps.y() < -margin && pe.y() < -margin) ||
+        (ps.x() > cam.width + margin && pe.x() > cam.width + margin) ||
+        (ps.y() > cam.height + margin && pe.y() > cam.height + margin))
+      continue;
+    const double length = (pe - ps).norm();
+    if (length < 1.0) continue;
+    const Eigen::Vector2d d = (pe - ps) / length;
+    BestTwo best;
+    for (size_t j = 0; j < f.size(); ++j) {
+      const Observed& o = observed[j];
+      // The gates of LineMatcher::withinGates: direction, endpoint distances, overlap.
+      if (d.dot(o.d) < cos_max_angle) continue;
+      if (std::abs(o.l.dot(ps.homogeneous())) > p.match_distance_px ||
+          std::abs(o.l.dot(pe.homogeneous())) > p.match_distance_px)
+        continue;
+      const double t0 = (o.start - ps).dot(d), t1 = (o.end - ps).dot(d);
+      if (std::max(t0, t1) <= 0.0 || std::min(t0, t1) >= length) continue;
+      best.offer(
+          cv::hal::normHamming(l.descriptor.ptr(), f.descriptors.ptr(static_cast<int>(j)), 32),
+          static_cast<long>(j));
+    }
+    if (!best.accept(p.max_descriptor_distance, p.match_ratio)) continue;
+    found_pairs.push_back({best.best, static_cast<size_t>(best.index), m});
+  }
+  // Each frame line once: the closest descriptor keeps it.
+  std::sort(found_pairs.begin(), found_pairs.end(), [](const Candidate& a, const Candidate& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.landmark < b.landmark;
+  });
+  int matches = 0;
+  for (const Candidate& c : found_pairs) {
+    if (frame.map_lines[c.line]) continue;
+    frame.map_lines[c.line] = candidates[c.landmark];
+    ++matches;
+  }
+  return matches;
 }
 
 int Tracker::trackLocalMap(Frame& frame) {
@@ -251,6 +338,7 @@ int Tracker::trackLocalMap(Frame& frame) {
   for (const auto& p : local_points_)
     if (p->last_projected_frame != frame.id) candidates.push_back(p);
   matcher_.match(frame, candidates, nullptr, params);
+  if (config_.lines.enabled) matchLines(frame, local_lines_);  // again, with the refined pose
   return optimizePose(frame);
 }
 
@@ -272,8 +360,30 @@ int Tracker::optimizePose(Frame& frame) {
     index.push_back(i);
   }
   std::vector<bool> inlier;
-  const int n = optimizer_.optimize(observations, frame.T_cw, inlier);
+  if (!config_.lines.enabled) {
+    const int n = optimizer_.optimize(observations, frame.T_cw, inlier);
+    for (size_t k = 0; k < index.size(); ++k) frame.outlier[index[k]] = !inlier[k];
+    return n;
+  }
+  std::vector<LineObservation> lines;
+  std::vector<size_t> line_index;
+  for (size_t i = 0; i < frame.map_lines.size(); ++i) {
+    const auto& l = frame.map_lines[i];
+    if (!l) continue;
+    LineObservation o;
+    o.start = l->start;
+    o.end = l->end;
+    o.line = frame.lines.lines[i].line();
+    o.pixel_sigma = config_.lines.residual_sigma_px;
+    lines.push_back(o);
+    line_index.push_back(i);
+  }
+  std::vector<bool> line_inlier;
+  const double weight = lineBalanceFactor(line_balance_, static_cast<int>(observations.size()));
+  const int n = optimizer_.optimize(observations, lines, weight, frame.T_cw, inlier, line_inlier);
   for (size_t k = 0; k < index.size(); ++k) frame.outlier[index[k]] = !inlier[k];
+  for (size_t k = 0; k < line_index.size(); ++k)
+    frame.line_outlier[line_index[k]] = !line_inlier[k];
   return n;
 }
 
@@ -286,6 +396,15 @@ void Tracker::updatePointStatistics(Frame& frame) {
       continue;
     }
     ++p->found;
+  }
+  for (size_t i = 0; i < frame.map_lines.size(); ++i) {
+    auto& l = frame.map_lines[i];
+    if (!l) continue;
+    if (frame.line_outlier[i]) {
+      l = nullptr;
+      continue;
+    }
+    ++l->found;
   }
   // Landmarks that are in view but rarely matched are unreliable: retire them.
   for (const auto& p : local_points_)
@@ -345,6 +464,25 @@ void Tracker::createKeyFrame(Frame& frame) {
     map_.addObservation(*kf, i, point);
     p = point;
     frame.outlier[i] = false;
+  }
+  if (config_.lines.enabled) {
+    // Line landmarks: the matched ones gain an observation, the accepted 3D fits of the rest
+    // become new ones (world frame by the keyframe's pose).
+    kf->map_lines.resize(frame.lines.size());
+    for (size_t i = 0; i < frame.lines.size(); ++i) {
+      auto& l = frame.map_lines[i];
+      if (l && !frame.line_outlier[i]) {
+        ++l->observations;
+        kf->map_lines[i] = l;
+        continue;
+      }
+      if (!frame.lines.hasLine3D(i)) continue;
+      const Line3D& fit = frame.lines.lines3d[i];
+      l = map_.createMapLine(T_wc * fit.start, T_wc * fit.end, frame.lines.descriptor(i), kf->id);
+      l->observations = 1;
+      kf->map_lines[i] = l;
+      frame.line_outlier[i] = false;
+    }
   }
   last_keyframe_ = kf;
 }

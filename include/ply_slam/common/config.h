@@ -27,6 +27,9 @@ struct OrbParams {
 // Line features (features module): LSD segments, merging, LBD, 3D fitting (PAPER.md §3.1) and
 // matching between frames.
 struct LineParams {
+  bool enabled = false;              // lines in tracking; false: nothing about lines runs
+  std::string balance = "paper";     // F(n) of the line term: "paper" 2n/50, "one" F = 1
+  double residual_sigma_px = 1.0;    // B = sigma^2 I of the line residual in pose optimisation
   std::string detector = "auto";     // "lsd", "edlines", or "auto": LSD where OpenCV has it
   double lsd_scale = 0.4;            // LSD's Gaussian sub-sampling of the image (1 = full size)
   double merge_angle_deg = 3.0;      // pieces of one edge: directions within this angle,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ply_slam/features/frame_features.h"
+#include "ply_slam/map/map_line.h"
 #include "ply_slam/map/map_point.h"
 
 namespace ply_slam {
@@ -18,6 +19,7 @@ struct KeyFrame {
   Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
   FrameFeatures features;
   std::vector<std::shared_ptr<MapPoint>> map_points;  // per keypoint, may be null
+  std::vector<std::shared_ptr<MapLine>> map_lines;    // per line of the frame, may be null
   std::map<KeyFrame*, int> covisibility;              // keyframe -> shared map points
 
   Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }

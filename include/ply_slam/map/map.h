@@ -5,17 +5,21 @@
 #include <vector>
 
 #include "ply_slam/map/key_frame.h"
+#include "ply_slam/map/map_line.h"
 #include "ply_slam/map/map_point.h"
 
 namespace ply_slam {
 
-// The sparse map: keyframes and point landmarks. Containers are guarded by a mutex so the
+// The sparse map: keyframes, point and line landmarks. Containers are guarded by a mutex so the
 // mapping side can read while tracking inserts.
 class Map {
  public:
   std::shared_ptr<KeyFrame> addKeyFrame(std::shared_ptr<KeyFrame> keyframe);
   std::shared_ptr<MapPoint> createMapPoint(const Eigen::Vector3d& position,
                                            const cv::Mat& descriptor, long keyframe_id);
+  // A line landmark with world endpoints, seen first by keyframe `keyframe_id`.
+  std::shared_ptr<MapLine> createMapLine(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                                         const cv::Mat& descriptor, long keyframe_id);
   // Links keypoint `index` of `keyframe` to `point` and updates covisibility.
   void addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point);
   // Unlinks keypoint `index` of `keyframe` from its landmark and updates covisibility.
@@ -30,6 +34,8 @@ class Map {
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;
   size_t numKeyFrames() const;
   size_t numMapPoints() const;
+  std::vector<std::shared_ptr<MapLine>> mapLines() const;
+  size_t numMapLines() const;
 
  private:
   void addObservationLocked(KeyFrame& keyframe, size_t index,
@@ -39,6 +45,8 @@ class Map {
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<KeyFrame>> keyframes_;
   std::vector<std::shared_ptr<MapPoint>> points_;
+  std::vector<std::shared_ptr<MapLine>> lines_;
+  long next_line_id_ = 0;
   long next_point_id_ = 0;
   long next_keyframe_id_ = 0;
 };

@@ -5,6 +5,8 @@
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/features/line_extractor.h"
+#include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/map/map.h"
@@ -17,8 +19,10 @@ namespace ply_slam {
 // Milliseconds spent on one frame, per stage.
 struct FrameTiming {
   double features_ms = 0.0;  // grey conversion, ORB, undistortion, depth lookup
+  double lines_ms = 0.0;     // line detection, LBD, 3D fitting (0 when disabled); beside ORB on a
+                             // second thread, so total_ms holds the longer of the two only
   double tracking_ms = 0.0;  // matching, pose optimisation, keyframe insertion
-  double total_ms = 0.0;     // features + tracking: what the frame costs the tracking side
+  double total_ms = 0.0;     // features + lines + tracking: what the frame costs the tracking side
   double mapping_ms = 0.0;   // local bundle adjustment after a new keyframe (mapping side)
 };
 
@@ -56,6 +60,8 @@ class System {
 
   SystemConfig config_;
   OrbExtractor extractor_;
+  std::unique_ptr<LineExtractor> line_extractor_;  // null when lines are disabled
+  std::unique_ptr<LineFitter> line_fitter_;
   Map map_;
   Tracker tracker_;
   Mapper mapper_;

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "ply_slam/features/frame_features.h"
+#include "ply_slam/features/frame_lines.h"
+#include "ply_slam/map/map_line.h"
 #include "ply_slam/map/map_point.h"
 
 namespace ply_slam {
@@ -17,6 +19,10 @@ struct Frame {
   std::vector<std::shared_ptr<MapPoint>> map_points;  // per keypoint, may be null
   std::vector<bool> outlier;                          // per keypoint, set by pose optimisation
   Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
+  // Line features (empty when lines are disabled) and the line landmark matched to each.
+  FrameLines lines;
+  std::vector<std::shared_ptr<MapLine>> map_lines;  // per line, may be null
+  std::vector<bool> line_outlier;                   // per line, set by pose optimisation
 
   Frame() = default;
   Frame(long frame_id, double frame_stamp, FrameFeatures frame_features)
@@ -27,8 +33,11 @@ struct Frame {
         outlier(features.size(), false) {}
 
   Eigen::Vector3d cameraCentre() const { return T_cw.inverse().translation(); }
+  // Attaches the frame's line features (before tracking).
+  void setLines(FrameLines frame_lines);
   int numMatches() const;
-  void clearMatches();
+  int numLineMatches() const;
+  void clearMatches();  // points and lines
 };
 
 }  // namespace ply_slam

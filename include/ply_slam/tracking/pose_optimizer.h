@@ -16,6 +16,19 @@ struct PointObservation {
   double depth_sigma = 0.0;  // m, from the sensor noise model
 };
 
+// One line landmark seen in the current frame (PAPER.md §3): the 3D segment's world endpoints
+// and the observed 2D segment as its normalised homogeneous line l = (p_s^h x p_e^h) / |(a, b)|.
+struct LineObservation {
+  Eigen::Vector3d start, end;  // world frame (m)
+  Eigen::Vector3d line;        // l . (u, v, 1) = signed distance in px (undistorted)
+  double pixel_sigma = 1.0;    // px, of the observed line's position
+};
+
+// How the line term is weighted against the point term: F(n) of PAPER.md §3, with n the
+// number of point observations. kPaper reads the garbled "F(n) = 2 n 50" as 2n/50; kOne is 1.
+enum class LineBalance { kPaper, kOne };
+double lineBalanceFactor(LineBalance balance, int num_points);
+
 struct PoseOptimizerParams {
   double chi2_pixel = 5.991;  // 2-DoF 95 %: reprojection outlier above
   double chi2_depth = 7.815;  // 3-DoF 95 %: with the depth residual
@@ -33,6 +46,17 @@ class PoseOptimizer {
   // Refines T_cw in place; inlier[i] tells whether observation i fits. Returns inliers.
   int optimize(const std::vector<PointObservation>& observations, Eigen::Isometry3d& T_cw,
                std::vector<bool>& inlier) const;
+  // Points and lines together: cost sum rho(e_p' A^-1 e_p) + sum rho(F e_l' B^-1 e_l) with
+  // e_l = [l . pi^h(T_cw P_s), l . pi^h(T_cw P_e)] (px, whitened by the line's pixel_sigma),
+  // Huber rho, F = line_weight. Lines are re-classified like points against the 2-DoF bound
+  // (chi2_pixel) on the unweighted e_l' B^-1 e_l. Returns the point inliers; line_inlier[k]
+  // tells whether line k fits.
+  int optimize(const std::vector<PointObservation>& observations,
+               const std::vector<LineObservation>& lines, double line_weight,
+               Eigen::Isometry3d& T_cw, std::vector<bool>& inlier,
+               std::vector<bool>& line_inlier) const;
+  // Whitened squared line error e_l' B^-1 e_l at T_cw (infinite behind the camera).
+  double squaredLineError(const LineObservation& o, const Eigen::Isometry3d& T_cw) const;
 
  private:
   double squaredError(const PointObservation& o, const Eigen::Isometry3d& T_cw) const;

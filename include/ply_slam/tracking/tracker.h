@@ -19,7 +19,8 @@ const char* toString(TrackingState state);
 struct TrackingResult {
   TrackingState state = TrackingState::kNotInitialised;
   Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
-  int inliers = 0;
+  int inliers = 0;                         // point inliers
+  int line_inliers = 0;                    // line inliers (0 when lines are disabled)
   std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
   std::string method;                      // how the pose was found: init, motion, pnp, reloc
 };
@@ -44,6 +45,10 @@ class Tracker {
   int trackLocalMap(Frame& frame);
   void updateLocalMap(const Frame& frame);
   int optimizePose(Frame& frame);
+  // Matches the frame's lines to line landmarks projected with frame.T_cw: LineMatcher's gates
+  // (direction, endpoint-to-line distance, overlap), then LBD distance and ratio; each frame
+  // line to its closest landmark. Replaces the frame's line matches. Returns the matches.
+  int matchLines(Frame& frame, const std::vector<std::shared_ptr<MapLine>>& candidates) const;
   bool needKeyFrame(const Frame& frame, int inliers) const;
   void createKeyFrame(Frame& frame);
   void updatePointStatistics(Frame& frame);
@@ -53,6 +58,7 @@ class Tracker {
   std::vector<double> scales_;
   PoseOptimizer optimizer_;
   ProjectionMatcher matcher_;
+  LineBalance line_balance_;
 
   TrackingState state_ = TrackingState::kNotInitialised;
   std::unique_ptr<Frame> last_frame_;
@@ -61,6 +67,7 @@ class Tracker {
   std::shared_ptr<KeyFrame> last_keyframe_;
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
+  std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
 };
 
 }  // namespace ply_slam

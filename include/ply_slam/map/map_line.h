@@ -1,0 +1,22 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+namespace ply_slam {
+
+// A static 3D line segment landmark (issue #4), created at a keyframe from an accepted 3D fit
+// (PAPER.md §3.1) moved into the world frame, matched by its LBD descriptor.
+struct MapLine {
+  long id = 0;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  // world frame, m; the end seen at the 2D start
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  cv::Mat descriptor;  // 1x32 CV_8U LBD
+  long first_keyframe_id = 0;
+  int observations = 0;       // keyframes that observe it
+  int found = 0;              // frames in which it was matched as an inlier
+  long local_map_frame = -1;  // frame id whose local map holds it (deduplication)
+  bool bad = false;
+};
+
+}  // namespace ply_slam
