@@ -8,46 +8,12 @@
 #include <vector>
 
 #include "ply_slam/tracking/pose_optimizer.h"
+#include "pose_test_helpers.h"
 
 namespace ply_slam {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegreesPerRadian = 180.0 / kPi;
-
-PinholeCamera makeCamera() {
-  PinholeCamera camera;  // TUM fr1 intrinsics, undistorted pixels
-  camera.fx = 517.3;
-  camera.fy = 516.5;
-  camera.cx = 318.6;
-  camera.cy = 255.3;
-  camera.width = 640;
-  camera.height = 480;
-  // A small sensor noise: sigma_Z = 1.6 mm at 1 m, 6.3 mm at 4 m.
-  camera.depth_noise = DepthNoiseModel{2.5e-6, 0.0, 1.0e-7};
-  return camera;
-}
-
-Eigen::Isometry3d makePose(const Eigen::Vector3d& axis, double angle_deg,
-                           const Eigen::Vector3d& t) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() =
-      Eigen::AngleAxisd(angle_deg / kDegreesPerRadian, axis.normalized()).toRotationMatrix();
-  T.translation() = t;
-  return T;
-}
-
-// 20 deg about a tilted axis, translated (0.3, -0.1, 0.2) m.
-Eigen::Isometry3d truePose() { return makePose({0.3, 1.0, -0.4}, 20.0, {0.3, -0.1, 0.2}); }
-
-double rotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.rotation() * b.rotation().transpose()).angle() * kDegreesPerRadian;
-}
-
-double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  // Camera centres: the quantity a trajectory error measures.
-  return (a.inverse().translation() - b.inverse().translation()).norm();
-}
+using namespace ::ply_slam::test;
 
 struct Scene {
   std::vector<PointObservation> observations;
