@@ -176,6 +176,20 @@ void readTracking(Section s, TrackingParams& t) {
   s.rejectUnknownKeys();
 }
 
+void readSegmentation(Section s, YoloParams& y) {
+  s.read("model", y.model_path);
+  s.read("classes", y.class_names_path);
+  s.readPositive("input_width", y.input_width);
+  s.readPositive("input_height", y.input_height);
+  s.readPositive("score_threshold", y.score_threshold);
+  s.readPositive("nms_threshold", y.nms_threshold);
+  s.readPositive("mask_threshold", y.mask_threshold);
+  if (y.score_threshold >= 1.f) s.fail("score_threshold", "must be < 1");
+  if (y.nms_threshold > 1.f) s.fail("nms_threshold", "must be <= 1");
+  if (y.mask_threshold >= 1.f) s.fail("mask_threshold", "must be < 1");
+  s.rejectUnknownKeys();
+}
+
 }  // namespace
 
 SystemConfig loadConfig(const std::string& path) {
@@ -196,6 +210,7 @@ SystemConfig loadConfig(const std::string& path) {
   readCamera(top.child("camera"), config.camera);
   readOrb(top.child("orb"), config.orb);
   readLines(top.child("lines"), config.lines);
+  readSegmentation(top.child("segmentation"), config.segmentation);
   readTracking(top.child("tracking"), config.tracking);
   top.rejectUnknownKeys();
   return config;

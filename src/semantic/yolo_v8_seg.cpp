@@ -50,6 +50,8 @@ std::vector<std::string> readClassNames(const std::string& path) {
 }  // namespace
 
 YoloV8Seg::YoloV8Seg(const YoloParams& params) : params_(params) {
+  if (params_.model_path.empty())
+    throw std::runtime_error("no YOLOv8-seg model given (config segmentation.model or --model)");
   if (!std::filesystem::exists(params_.model_path))
     throw std::runtime_error(params_.model_path + ": YOLOv8-seg model file missing");
   try {
@@ -60,6 +62,9 @@ YoloV8Seg::YoloV8Seg(const YoloParams& params) : params_(params) {
   if (net_.empty()) throw std::runtime_error(params_.model_path + ": OpenCV loaded an empty net");
   net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  if (params_.class_names_path.empty())  // the usual layout: coco.names beside the model
+    params_.class_names_path =
+        (std::filesystem::path(params_.model_path).parent_path() / "coco.names").string();
   class_names_ = readClassNames(params_.class_names_path);
 }
 

@@ -62,8 +62,6 @@ int main(int argc, char** argv) {
   }
   if (sequence_dir.empty() || params.model_path.empty())
     usage("--sequence and --model are required");
-  if (params.class_names_path.empty())
-    params.class_names_path = (fs::path(params.model_path).parent_path() / "coco.names").string();
 
   try {
     YoloV8Seg yolo(params);

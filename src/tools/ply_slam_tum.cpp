@@ -1,11 +1,13 @@
 // Offline run of ply_slam on a TUM RGB-D folder:
-//   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks] [--max-frames N]
+//   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
+//                [--model ONNX --input WxH] [--max-frames N] [--no-lines]
 //                [--no-lines]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
 // trajectory.png into DIR.
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -19,6 +21,7 @@
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
+#include "ply_slam/semantic/yolo_v8_seg.h"
 #include "ply_slam/system/system.h"
 
 namespace fs = std::filesystem;
@@ -30,15 +33,20 @@ struct Options {
   std::string sequence, config, out;
   long max_frames = -1;
   std::string segmenter = "none";
-  bool no_lines = false;  // overrides lines.enabled of the config
+  std::string model;                      // overrides the config's segmentation.model
+  int input_width = 0, input_height = 0;  // and its input size
+  bool no_lines = false;                  // overrides lines.enabled of the config
 };
 
 [[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_tum: " << error << "\n"
-            << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
-               " [--segmenter none|masks] [--max-frames N] [--no-lines]\n"
-               "  --no-lines: points only, whatever lines.enabled says\n"
-               "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n";
+  std::cerr
+      << "ply_slam_tum: " << error << "\n"
+      << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
+         " [--segmenter none|masks|yolo] [--model ONNX --input WxH] [--max-frames N] [--no-lines]\n"
+         "  --no-lines: points only, whatever lines.enabled says\n"
+         "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n"
+         "  --segmenter yolo: YOLOv8-seg, model from the config's segmentation section or"
+         " --model/--input\n";
   std::exit(2);
 }
 
@@ -60,13 +68,19 @@ Options parse(int argc, char** argv) {
       o.out = value;
     else if (arg == "--segmenter")
       o.segmenter = value;
-    else if (arg == "--max-frames")
+    else if (arg == "--model")
+      o.model = value;
+    else if (arg == "--input") {
+      if (std::sscanf(value.c_str(), "%dx%d", &o.input_width, &o.input_height) != 2 ||
+          o.input_width <= 0 || o.input_height <= 0)
+        usage("--input needs WxH, e.g. 320x320");
+    } else if (arg == "--max-frames")
       o.max_frames = std::stol(value);
     else
       usage("unknown option " + arg);
   }
-  if (o.segmenter != "none" && o.segmenter != "masks")
-    usage("unknown segmenter '" + o.segmenter + "' (none or masks)");
+  if (o.segmenter != "none" && o.segmenter != "masks" && o.segmenter != "yolo")
+    usage("unknown segmenter '" + o.segmenter + "' (none, masks or yolo)");
   if (o.sequence.empty() || o.config.empty() || o.out.empty())
     usage("--sequence, --config and --out are required");
   return o;
@@ -109,8 +123,18 @@ int run(const Options& options) {
   const fs::path out(options.out);
 
   std::unique_ptr<Segmenter> segmenter;
-  if (options.segmenter == "masks")
+  if (options.segmenter == "masks") {
     segmenter = std::make_unique<MaskFolderSegmenter>(sequence.folder());
+  } else if (options.segmenter == "yolo") {
+    // Offline, every frame is segmented before it is tracked: runs are reproducible.
+    YoloParams yolo = config.segmentation;
+    if (!options.model.empty()) yolo.model_path = options.model;
+    if (options.input_width > 0) {
+      yolo.input_width = options.input_width;
+      yolo.input_height = options.input_height;
+    }
+    segmenter = std::make_unique<YoloV8Seg>(yolo);
+  }
   System system(config);
   std::ofstream timing(out / "timing.csv");
   timing

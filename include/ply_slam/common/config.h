@@ -70,12 +70,24 @@ struct TrackingParams {
   double max_point_depth = 6.0;  // m; points beyond are not mapped (depth noise grows as Z^2)
 };
 
+// YOLOv8-seg instance segmentation (semantic module).
+struct YoloParams {
+  std::string model_path;        // ONNX export with a fixed input size (README); "" = none
+  std::string class_names_path;  // one class name per line, in the model's order
+  int input_width = 640;         // the export's input size
+  int input_height = 640;
+  float score_threshold = 0.35f;  // keep detections whose best class score is above
+  float nms_threshold = 0.5f;     // IoU above which the weaker box of one class is dropped
+  float mask_threshold = 0.5f;    // sigmoid mask probability that counts as inside
+};
+
 struct SystemConfig {
   std::string source_path;  // the file it was loaded from
   PinholeCamera camera;
   OrbParams orb;
   LineParams lines;
   TrackingParams tracking;
+  YoloParams segmentation;
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and
