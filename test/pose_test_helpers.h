@@ -2,6 +2,7 @@
 
 // Camera, poses and pose errors shared by the pose-optimisation tests.
 #include <Eigen/Geometry>
+#include <random>
 
 #include "ply_slam/common/pinhole_camera.h"
 
@@ -43,6 +44,15 @@ inline double rotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry
 // Distance of the camera centres: the quantity a trajectory error measures.
 inline double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return (a.inverse().translation() - b.inverse().translation()).norm();
+}
+
+// The true pose moved by 5 cm and turned by 3 deg, in random directions.
+inline Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T, unsigned seed) {
+  std::mt19937 rng(seed + 1000);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const Eigen::Vector3d axis(gauss(rng), gauss(rng), gauss(rng));
+  const Eigen::Vector3d shift(gauss(rng), gauss(rng), gauss(rng));
+  return makePose(axis, 3.0, 0.05 * shift.normalized()) * T;
 }
 
 }  // namespace ply_slam::test

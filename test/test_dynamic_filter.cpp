@@ -7,19 +7,10 @@
 #include <random>
 
 #include "ply_slam/dynamic/dynamic_feature_filter.h"
+#include "ply_slam/synth/synthetic_sequence.h"
 
 namespace ply_slam {
 namespace {
-
-PinholeCamera camera() {
-  PinholeCamera c;
-  c.fx = c.fy = 525.0;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
 
 struct Scene {
   std::vector<FeatureCorrespondence> features;
@@ -33,7 +24,7 @@ Scene makeScene(const Eigen::Vector3d& object_motion, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> noise(0.0, 0.002);
-  const PinholeCamera cam = camera();
+  const PinholeCamera cam = syntheticCamera();
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous -> current camera
   motion.linear() = Eigen::AngleAxisd(0.03, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).matrix();
   motion.translation() = Eigen::Vector3d(0.02, -0.01, 0.03);

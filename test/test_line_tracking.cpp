@@ -20,15 +20,6 @@ namespace {
 
 using namespace ::ply_slam::test;
 
-// The true pose moved by 5 cm and turned by 3 deg, in random directions.
-Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T, unsigned seed) {
-  std::mt19937 rng(seed + 1000);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  const Eigen::Vector3d axis(gauss(rng), gauss(rng), gauss(rng));
-  const Eigen::Vector3d shift(gauss(rng), gauss(rng), gauss(rng));
-  return makePose(axis, 3.0, 0.05 * shift.normalized()) * T;
-}
-
 struct LineScene {
   std::vector<LineObservation> lines;
   std::vector<bool> is_outlier;

@@ -21,6 +21,7 @@
 #include "ply_slam/features/line_matcher.h"
 #include "ply_slam/features/line_merger.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/synth/synthetic_sequence.h"
 #include "shared_data.h"
 
 namespace ply_slam {
@@ -28,16 +29,13 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
+// The synthetic scenes' camera, with the depth range of the TUM configs; depth noise: the
+// defaults (5 mm at 1 m).
 PinholeCamera syntheticCamera() {
-  PinholeCamera c;
-  c.fx = c.fy = 525.0;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
+  PinholeCamera c = ::ply_slam::syntheticCamera();
   c.min_depth = 0.3;
   c.max_depth = 6.0;
-  return c;  // depth noise: the defaults (5 mm at 1 m)
+  return c;
 }
 
 // The plane n . X = d in the camera frame (n unit).

@@ -14,8 +14,7 @@ namespace {
 TEST(Relocalisation, RecoversAfterBlankFrames) {
   const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
   PLY_SLAM_REQUIRE_SHARED(folder);
-  const SystemConfig config =
-      loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+  const SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
   const TumSequence sequence(folder);
   ASSERT_GE(sequence.size(), 30u);
   System system(config);

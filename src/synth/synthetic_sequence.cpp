@@ -7,6 +7,15 @@ namespace {
 
 constexpr double kFirstStamp = 1700000000.0;  // TUM-like epoch stamps
 
+SynthOptions checked(const SynthOptions& o) {
+  if (o.frames < 2) throw std::invalid_argument("frames must be >= 2");
+  if (o.walkers < 0 || o.walkers > 255) throw std::invalid_argument("walkers must be in 0..255");
+  if (!(o.fps > 0.0)) throw std::invalid_argument("fps must be > 0");
+  return o;
+}
+
+}  // namespace
+
 PinholeCamera syntheticCamera() {
   PinholeCamera c;
   c.fx = c.fy = 525.0;
@@ -17,15 +26,6 @@ PinholeCamera syntheticCamera() {
   c.depth_factor = 5000.0;
   return c;
 }
-
-SynthOptions checked(const SynthOptions& o) {
-  if (o.frames < 2) throw std::invalid_argument("frames must be >= 2");
-  if (o.walkers < 0 || o.walkers > 255) throw std::invalid_argument("walkers must be in 0..255");
-  if (!(o.fps > 0.0)) throw std::invalid_argument("fps must be > 0");
-  return o;
-}
-
-}  // namespace
 
 SyntheticSequence::SyntheticSequence(const SynthOptions& options)
     : options_(checked(options)),

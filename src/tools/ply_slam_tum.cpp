@@ -50,6 +50,13 @@ struct Options {
   std::exit(2);
 }
 
+long parseCount(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || value < 0) usage(option + " needs a whole number >= 0");
+  return value;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -75,7 +82,7 @@ Options parse(int argc, char** argv) {
           o.input_width <= 0 || o.input_height <= 0)
         usage("--input needs WxH, e.g. 320x320");
     } else if (arg == "--max-frames")
-      o.max_frames = std::stol(value);
+      o.max_frames = parseCount(arg, value);
     else
       usage("unknown option " + arg);
   }

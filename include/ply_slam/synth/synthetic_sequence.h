@@ -23,6 +23,10 @@ struct SynthOptions {
   std::string texture_dir = kDefaultTextureDir;
 };
 
+// The camera of every synthetic sequence: 640x480, fx = fy = 525, centre (319.5, 239.5), no
+// distortion, depth factor 5000.
+PinholeCamera syntheticCamera();
+
 // A synthetic RGB-D sequence: scene, camera path and renderer, frame by frame on demand.
 // Camera: 640x480, fx = fy = 525, centre (319.5, 239.5), no distortion, depth factor 5000.
 class SyntheticSequence {
