@@ -3,27 +3,31 @@
 #include <cmath>
 #include <future>
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/semantic/dynamic_classes.h"
+#include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
 namespace {
 
 constexpr int kMaskDilationPx = 5;  // masks miss the blurred rim of a moving object
 
-size_t dropDynamicFeatures(FrameFeatures& features, const std::vector<Instance>& instances) {
+// The dilated union of the masks of moving classes; empty when there are none.
+cv::Mat dynamicMask(const std::vector<Instance>& instances, std::set<int>& dynamic_ids) {
   cv::Mat dynamic;
   for (const auto& instance : instances) {
     if (!isActiveDynamicClass(instance.class_name)) continue;
+    dynamic_ids.insert(instance.id);
     if (dynamic.empty()) dynamic = cv::Mat::zeros(instance.mask.size(), CV_8UC1);
     dynamic |= instance.mask;
   }
-  if (dynamic.empty()) return 0;
+  if (dynamic.empty()) return dynamic;
   cv::dilate(dynamic, dynamic,
              cv::getStructuringElement(cv::MORPH_ELLIPSE,
                                        cv::Size(2 * kMaskDilationPx + 1, 2 * kMaskDilationPx + 1)));
-  return features.removeMasked(dynamic);
+  return dynamic;
 }
 
 }  // namespace
@@ -90,7 +94,9 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
       result.frame_id, images.stamp,
       FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
                              images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
-  result.dynamic_features = dropDynamicFeatures(frame.features, instances);
+  std::set<int> dynamic_ids;
+  const cv::Mat dynamic_mask = dynamicMask(instances, dynamic_ids);
+  if (!dynamic_mask.empty()) result.dynamic_features = frame.features.removeMasked(dynamic_mask);
   result.timing.features_ms = total.elapsedMs();
   if (lines.valid()) frame.setLines(lines.get());
 
@@ -104,6 +110,9 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
     Stopwatch mapping;
     mapper_.insertKeyFrame(result.tracking.new_keyframe);
     result.timing.mapping_ms = mapping.elapsedMs();
+    result.keyframe_packet = std::make_shared<const KeyFramePacket>(
+        makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, instances,
+                           dynamic_ids, dynamic_mask));
   }
 
   const bool ok = result.tracking.state == TrackingState::kOk;

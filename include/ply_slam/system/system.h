@@ -9,6 +9,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/semantic/instance.h"
@@ -32,6 +33,8 @@ struct FrameResult {
   TrackingResult tracking;
   FrameTiming timing;
   size_t dynamic_features = 0;  // dropped because they lay on a moving object
+  // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
+  std::shared_ptr<const KeyFramePacket> keyframe_packet;
 };
 
 // A frame the system cannot use (empty, wrong encoding or size, stamp not increasing).

@@ -1,0 +1,75 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "ply_slam/common/pinhole_camera.h"
+
+namespace ply_slam {
+
+// A point landmark as the mapping side sees it.
+struct LandmarkPoint {
+  long id = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world frame, m
+};
+
+// A 3D line landmark: world-frame segment.
+struct LandmarkLine {
+  long id = 0;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();
+};
+
+// One instance of the keyframe's segmentation; its pixels are those of `label_image` equal
+// to `id`.
+struct PacketInstance {
+  int id = 0;  // 1..65535
+  std::string class_name;
+  float score = 1.0f;
+  bool dynamic = false;  // judged moving in this frame: its pixels are left out of the maps
+};
+
+// Tracker -> mapper (DESIGN.md, "One library, two transports"): everything the mapping side
+// needs about a new keyframe. Plain data, mirrored 1:1 by msg/KeyFrame.msg.
+struct KeyFramePacket {
+  long id = 0;        // keyframe id
+  long frame_id = 0;  // frame number in the sequence
+  double stamp = 0.0;
+  Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();  // camera -> world
+  PinholeCamera camera;                                    // the images' intrinsics
+  // Features (undistorted pixels), one row of `descriptors` each; landmark id per keypoint or -1.
+  std::vector<Eigen::Vector2d> keypoints;
+  std::vector<float> keypoint_depth;  // m, 0 = none
+  std::vector<int> keypoint_level;
+  cv::Mat descriptors;  // N x 32 CV_8U
+  std::vector<long> keypoint_landmark;
+  std::vector<LandmarkPoint> points;  // landmarks this keyframe observes
+  std::vector<LandmarkLine> lines;    // line landmarks this keyframe observes
+  // What the dense map needs: the images (raw, as from the camera) and the segmentation.
+  cv::Mat rgb;          // 8UC3 BGR
+  cv::Mat depth;        // 32FC1 m, 0 = invalid
+  cv::Mat label_image;  // 16UC1 instance id per pixel, 0 = none; empty when not segmented
+  std::vector<PacketInstance> instances;
+  cv::Mat dynamic_mask;  // 8UC1, non-zero: pixels of moving things (dilated); empty = none
+};
+
+// Mapper -> tracker: corrections after local BA or loop closure. Mirrored by msg/MapUpdate.msg.
+struct MapUpdate {
+  struct KeyFramePose {
+    long id = 0;
+    Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
+  };
+  struct Merge {
+    long from = 0;  // landmark id replaced by
+    long to = 0;
+  };
+  double stamp = 0.0;  // of the newest keyframe it accounts for
+  std::vector<KeyFramePose> keyframes;
+  std::vector<LandmarkPoint> points;
+  std::vector<LandmarkLine> lines;
+  std::vector<Merge> merged_points;
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,54 @@
+#include "ply_slam/system/key_frame_packet_builder.h"
+
+#include <algorithm>
+
+namespace ply_slam {
+
+KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
+                                  const RgbdImages& images, const std::vector<Instance>& instances,
+                                  const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask) {
+  KeyFramePacket packet;
+  packet.id = keyframe.id;
+  packet.frame_id = keyframe.frame_id;
+  packet.stamp = keyframe.stamp;
+  packet.T_wc = keyframe.T_wc();
+  packet.camera = camera;
+
+  const FrameFeatures& f = keyframe.features;
+  packet.keypoints = f.undistorted;
+  packet.keypoint_depth = f.depth;
+  packet.keypoint_level.reserve(f.size());
+  for (size_t i = 0; i < f.size(); ++i) packet.keypoint_level.push_back(f.level(i));
+  packet.descriptors = f.descriptors.clone();
+  packet.keypoint_landmark.assign(f.size(), -1);
+  for (size_t i = 0; i < keyframe.map_points.size() && i < f.size(); ++i) {
+    const auto& mp = keyframe.map_points[i];
+    if (!mp || mp->bad) continue;
+    packet.keypoint_landmark[i] = mp->id;
+    packet.points.push_back({mp->id, mp->position});
+  }
+  for (const auto& ml : keyframe.map_lines)
+    if (ml && !ml->bad) packet.lines.push_back({ml->id, ml->start, ml->end});
+
+  packet.rgb = images.rgb.clone();
+  packet.depth = images.depth.clone();
+  if (!instances.empty()) {
+    packet.label_image = cv::Mat::zeros(images.rgb.size(), CV_16UC1);
+    // Larger instances first, so a smaller one in front keeps its pixels where they overlap.
+    std::vector<const Instance*> order;
+    for (const auto& instance : instances) order.push_back(&instance);
+    std::stable_sort(order.begin(), order.end(), [](const Instance* a, const Instance* b) {
+      return cv::countNonZero(a->mask) > cv::countNonZero(b->mask);
+    });
+    for (const Instance* instance : order) {
+      const int id = std::clamp(instance->id, 1, 65535);
+      packet.label_image.setTo(id, instance->mask);
+      packet.instances.push_back(
+          {id, instance->class_name, instance->score, dynamic_ids.count(instance->id) > 0});
+    }
+  }
+  if (!dynamic_mask.empty()) packet.dynamic_mask = dynamic_mask.clone();
+  return packet;
+}
+
+}  // namespace ply_slam
