@@ -116,6 +116,44 @@ TEST(DynamicFeatureFilter, ActiveInstanceDroppedWholePassiveAndStaticKept) {
   EXPECT_FALSE(d.dynamic_instances.count(1));
 }
 
+// The label rules: an instance is dynamic as a whole when its dynamic degree r_d exceeds
+// Th_min (active class) or Th_max (passive class); an active instance without enough matched
+// features to judge is presumed dynamic, a passive one is not.
+TEST(DynamicFeatureFilter, LabelRulesFollowTheThresholds) {
+  Scene s = makeScene({0.15, 0.0, 0.05}, 5);
+  // Instance 3: half the moving object and as many static background features.
+  int moving = 0, still = 0;
+  for (size_t i = 0; i < s.features.size(); ++i) {
+    if (s.moving[i] && moving < 20) s.instance[i] = 3, ++moving;
+    if (!s.moving[i] && s.instance[i] == 0 && still < 20) s.instance[i] = 3, ++still;
+  }
+  const auto degree = DynamicFeatureFilter(noisyCamera(), {})
+                          .decide(s.features, s.instance, {{3, ClassMotion::kActive}}, 640, 480)
+                          .degree.at(3);
+  ASSERT_GT(degree, 0.3);
+  ASSERT_LT(degree, 0.7);
+  auto judged = [&](ClassMotion kind, double active, double passive) {
+    DynamicFilterParams p;
+    p.active_degree = active;
+    p.passive_degree = passive;
+    return DynamicFeatureFilter(noisyCamera(), p)
+               .decide(s.features, s.instance, {{3, kind}}, 640, 480)
+               .dynamic_instances.count(3) > 0;
+  };
+  EXPECT_TRUE(judged(ClassMotion::kActive, degree - 0.05, 0.95));
+  EXPECT_FALSE(judged(ClassMotion::kActive, degree + 0.05, 0.95));
+  EXPECT_TRUE(judged(ClassMotion::kPassive, 0.05, degree - 0.05));
+  EXPECT_FALSE(judged(ClassMotion::kPassive, 0.05, degree + 0.05));
+  EXPECT_FALSE(judged(ClassMotion::kStatic, 0.0, 0.0));
+
+  // Instances no feature lies on: the person is presumed moving, the chair is not.
+  const auto d = DynamicFeatureFilter(noisyCamera(), {})
+                     .decide(s.features, s.instance,
+                             {{8, ClassMotion::kActive}, {9, ClassMotion::kPassive}}, 640, 480);
+  EXPECT_TRUE(d.dynamic_instances.count(8));
+  EXPECT_FALSE(d.dynamic_instances.count(9));
+}
+
 TEST(DynamicFeatureFilter, StaticSceneKeepsEverything) {
   const Scene s = makeScene(Eigen::Vector3d::Zero(), 4);
   const auto d = DynamicFeatureFilter(noisyCamera(), {})
