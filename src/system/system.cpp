@@ -76,6 +76,7 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   result.timing.features_ms = total.elapsedMs();
   if (lines.valid()) {
     FrameLines frame_lines = lines.get();
+    if (tracker_.velocity()) frame_lines.correctMotion(config_.camera, *tracker_.velocity());
     result.dynamic_lines = frame_lines.removeIf(
         DynamicRejector::linesTouching(frame_lines.lines, result.dynamic_mask));
     frame.setLines(std::move(frame_lines));
