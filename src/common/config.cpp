@@ -219,6 +219,8 @@ void readDynamic(Section s, DynamicParams& d) {
   s.read("baseline_frames", d.baseline_frames);
   if (d.baseline_frames < 1 || d.baseline_frames > 30)
     s.fail("baseline_frames", "must be in [1, 30]");
+  s.read("carry_frames", d.carry_frames);
+  if (d.carry_frames < 0 || d.carry_frames > 30) s.fail("carry_frames", "must be in [0, 30]");
   s.readPositive("match_radius_px", d.match_radius_px);
   s.readPositive("max_descriptor_distance", d.max_descriptor_distance);
   s.read("active_classes", d.active_classes);

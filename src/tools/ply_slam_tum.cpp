@@ -225,7 +225,7 @@ int run(const Options& options) {
     if (options.save_images > 0 && i % options.save_images == 0) {
       char name[32];
       std::snprintf(name, sizeof(name), "%06ld.jpg", r.frame_id);
-      cv::imwrite((out / "images" / name).string(), drawTrackingImage(images.rgb, r, instances));
+      cv::imwrite((out / "images" / name).string(), drawTrackingImage(images.rgb, r, r.instances));
     }
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;

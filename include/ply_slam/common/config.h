@@ -111,6 +111,8 @@ struct DynamicParams {
   // Frames back to the frame the Delaunay check compares with: a person walking at 1 m/s moves
   // 3 cm between two 30 Hz frames, within the depth noise at 3 m; over 0.1 s it moves 10 cm.
   int baseline_frames = 3;
+  // A dynamic instance the segmenter misses is carried on (by its flow) for this many frames.
+  int carry_frames = 5;
   double match_radius_px = 30.0;  // previous -> current feature search around the prediction
   int max_descriptor_distance = 50;
   std::vector<std::string> active_classes = {
