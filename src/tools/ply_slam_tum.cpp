@@ -1,9 +1,10 @@
 // Offline run of ply_slam on a TUM RGB-D folder:
 //   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
 //                [--model ONNX --input WxH] [--max-frames N] [--no-lines]
-//                [--no-lines]
+//                [--ground-truth-masks DIR]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
-// trajectory.png into DIR.
+// trajectory.png into DIR, and with dense.enabled the dense maps (dense_map.pcd/.ply,
+// semantic_octree.ot, octree.bt, map_legend.txt, map_top.png).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -16,10 +17,15 @@
 #include <sstream>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/stopwatch.h"
+#include "ply_slam/dense/dense_mapping_worker.h"
+#include "ply_slam/dense/map_export.h"
+#include "ply_slam/dense/top_view_renderer.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/semantic/dynamic_classes.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
 #include "ply_slam/system/system.h"
@@ -36,6 +42,7 @@ struct Options {
   std::string model;                      // overrides the config's segmentation.model
   int input_width = 0, input_height = 0;  // and its input size
   bool no_lines = false;                  // overrides lines.enabled of the config
+  std::string ground_truth_masks;         // walker masks for the dense maps' ghost count
 };
 
 [[noreturn]] void usage(const std::string& error) {
@@ -46,7 +53,9 @@ struct Options {
          "  --no-lines: points only, whatever lines.enabled says\n"
          "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n"
          "  --segmenter yolo: YOLOv8-seg, model from the config's segmentation section or"
-         " --model/--input\n";
+         " --model/--input\n"
+         "  --ground-truth-masks DIR: count dense points and octree voxels from the people of\n"
+         "    DIR/masks (default: the sequence's own masks/ when it has them)\n";
   std::exit(2);
 }
 
@@ -81,7 +90,9 @@ Options parse(int argc, char** argv) {
       if (std::sscanf(value.c_str(), "%dx%d", &o.input_width, &o.input_height) != 2 ||
           o.input_width <= 0 || o.input_height <= 0)
         usage("--input needs WxH, e.g. 320x320");
-    } else if (arg == "--max-frames")
+    } else if (arg == "--ground-truth-masks")
+      o.ground_truth_masks = value;
+    else if (arg == "--max-frames")
       o.max_frames = parseCount(arg, value);
     else
       usage("unknown option " + arg);
@@ -122,6 +133,80 @@ std::string jsonStats(const ErrorStats& s) {
   return out.str();
 }
 
+// Dense and semantic octree maps (issue #7) ---------------------------------------------------
+
+// The people of the ground-truth masks (undilated): what a ghost in the maps would come from.
+cv::Mat walkerPixels(MaskFolderSegmenter& masks, const RgbdImages& images) {
+  cv::Mat walkers = cv::Mat::zeros(images.rgb.size(), CV_8UC1);
+  for (const auto& instance : masks.segment(images))
+    if (isActiveDynamicClass(instance.class_name)) walkers |= instance.mask;
+  return walkers;
+}
+
+std::unique_ptr<MaskFolderSegmenter> groundTruthMasks(const Options& options,
+                                                      const TumSequence& sequence) {
+  std::string folder = options.ground_truth_masks;
+  if (folder.empty() && fs::exists(fs::path(sequence.folder()) / "masks") &&
+      fs::exists(fs::path(sequence.folder()) / "instances.txt"))
+    folder = sequence.folder();
+  return folder.empty() ? nullptr : std::make_unique<MaskFolderSegmenter>(folder);
+}
+
+// Drains the worker, re-places keyframes at their final poses, writes the maps and
+// map_top.png; returns the summary.json fields.
+std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, const fs::path& out,
+                            const std::string& title, bool counted_walkers) {
+  MapUpdate final_poses;
+  for (const auto& keyframe : system.map().keyFrames())
+    if (keyframe) final_poses.keyframes.push_back({keyframe->id, keyframe->T_wc()});
+  dense.push(final_poses);
+  dense.finish();
+  const std::vector<double> ms = dense.keyFrameMs();
+  std::ostringstream json;
+  dense.withMaps([&](DenseMap& map, const SemanticOctree& octree) {
+    Stopwatch global_watch;
+    const size_t points = map.numGlobalPoints();
+    const double global_ms = global_watch.elapsedMs();
+    writeDenseMaps(out.string(), map, octree);
+    const std::vector<SemanticOctree::Voxel> voxels = octree.occupiedVoxels();
+    const Trajectory trajectory = system.cameraTrajectory();
+    TopViewRenderer().write((out / "map_top.png").string(), voxels, trajectory,
+                            TopViewRenderer::upFromTrajectory(trajectory), octree.palette(),
+                            title + "   semantic octree, top view");
+    size_t walker_majority = 0, walker_any = 0;
+    for (const auto& v : voxels) {
+      walker_majority += 2 * v.tagged > v.hits;
+      walker_any += v.tagged > 0;
+    }
+    json << ",\n  \"dense\": {\"keyframes\": " << map.numKeyFrames() << ", \"points\": " << points
+         << ", \"occupied_voxels\": " << voxels.size()
+         << ", \"ms_per_keyframe_median\": " << percentile(ms, 0.5)
+         << ", \"ms_per_keyframe_p95\": " << percentile(ms, 0.95)
+         << ", \"global_cloud_ms\": " << global_ms << ", \"max_queue\": " << dense.maxQueueLength()
+         << ", \"rejected_packets\": " << dense.rejectedPackets()
+         << ", \"cloud_bytes\": " << map.memoryBytes()
+         << ", \"octree_bytes\": " << octree.memoryBytes()
+         << ", \"memory_bytes\": " << map.memoryBytes() + octree.memoryBytes();
+    if (counted_walkers) {
+      const long walker_points = map.taggedPoints();
+      json << ",\n    \"walkers\": {\"points\": " << walker_points
+           << ", \"points_share\": " << (points ? double(walker_points) / points : 0.0)
+           << ", \"voxels_majority\": " << walker_majority << ", \"voxels_majority_share\": "
+           << (voxels.empty() ? 0.0 : double(walker_majority) / voxels.size())
+           << ", \"voxels_any\": " << walker_any << ", \"voxels_any_share\": "
+           << (voxels.empty() ? 0.0 : double(walker_any) / voxels.size()) << "}";
+    }
+    json << "}";
+    std::cout << "dense map " << points << " points, octree " << voxels.size()
+              << " occupied voxels; dense+octree ms per keyframe median " << percentile(ms, 0.5)
+              << ", p95 " << percentile(ms, 0.95) << "\n";
+  });
+  if (dense.rejectedPackets() > 0)
+    std::cerr << "ply_slam_tum: dense maps left out " << dense.rejectedPackets()
+              << " keyframes: " << dense.firstError() << "\n";
+  return json.str();
+}
+
 int run(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
@@ -143,6 +228,12 @@ int run(const Options& options) {
     segmenter = std::make_unique<YoloV8Seg>(yolo);
   }
   System system(config);
+  std::unique_ptr<DenseMappingWorker> dense;
+  std::unique_ptr<MaskFolderSegmenter> walker_masks;
+  if (config.dense.enabled) {
+    dense = std::make_unique<DenseMappingWorker>(config.dense);
+    walker_masks = groundTruthMasks(options, sequence);
+  }
   std::ofstream timing(out / "timing.csv");
   timing
       << "frame,stamp,state,method,inliers,line_inliers,keyframe,features_ms,lines_ms,tracking_ms,"
@@ -161,6 +252,9 @@ int run(const Options& options) {
     try {
       const RgbdImages images = sequence.load(i, config.camera.depth_factor);
       r = system.process(images, segmenter ? segmenter->segment(images) : std::vector<Instance>{});
+      if (dense && r.keyframe_packet)
+        dense->push(r.keyframe_packet,
+                    walker_masks ? walkerPixels(*walker_masks, images) : cv::Mat());
     } catch (const std::exception& e) {
       failure = e.what();
       break;
@@ -216,6 +310,7 @@ int run(const Options& options) {
               << " frames; RPE " << rpe.translation.rmse << " m, " << rpe.rotation.rmse
               << " deg per frame\n";
   }
+  if (dense) json << finishDenseMaps(*dense, system, out, title, walker_masks != nullptr);
   if (!failure.empty()) json << ",\n  \"error\": \"" << jsonEscape(failure) << "\"";
   json << "\n}\n";
   std::ofstream(out / "summary.json") << json.str();

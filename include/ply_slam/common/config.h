@@ -81,6 +81,20 @@ struct YoloParams {
   float mask_threshold = 0.5f;    // sigmoid mask probability that counts as inside
 };
 
+// Dense and semantic octree maps (dense module, issue #7): keyframe point clouds without the
+// pixels of moving things, and an OctoMap ColorOcTree coloured by class.
+struct DenseParams {
+  bool enabled = true;                // false: no dense map, no octree
+  int stride = 2;                     // px between sampled pixels, in both directions
+  double min_depth = 0.3;             // m; pixels nearer or farther are left out
+  double max_depth = 4.0;             // m; depth noise grows as Z^2
+  double voxel_size = 0.02;           // m; voxel filter of keyframe clouds and the global cloud
+  int dilation_px = 0;                // extra dilation of the keyframe's dynamic mask
+  double octree_resolution = 0.05;    // m; leaf size of the semantic octree
+  std::string colour_mode = "class";  // octree voxel colour: "class" (palette) or "rgb"
+  std::string palette;  // file of "class r g b" lines overriding the built-in palette; "" = none
+};
+
 struct SystemConfig {
   std::string source_path;  // the file it was loaded from
   PinholeCamera camera;
@@ -88,6 +102,7 @@ struct SystemConfig {
   LineParams lines;
   TrackingParams tracking;
   YoloParams segmentation;
+  DenseParams dense;
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and
