@@ -33,6 +33,7 @@ inline DenseParams denseTestParams(int stride, double voxel_size) {
   p.min_depth = 0.3;
   p.max_depth = 4.0;
   p.octree_resolution = 0.05;
+  p.octree_occupancy = 0.5;  // one hit makes a voxel occupied
   return p;
 }
 

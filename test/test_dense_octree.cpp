@@ -32,7 +32,7 @@ DenseParams testParams() { return test::denseTestParams(1, 0.01); }
 
 struct Scene {
   KeyFrameCloudBuilder builder{testParams(), ClassPalette()};
-  SemanticOctree octree{0.05, 4.0, SemanticOctree::ColourMode::kClass, ClassPalette()};
+  SemanticOctree octree{0.05, SemanticOctree::ColourMode::kClass, ClassPalette()};
   void see(const KeyFramePacket& packet) { octree.insert(builder.build(packet)); }
   // +1 occupied, 0 free, -1 unknown.
   int state(const Eigen::Vector3d& p) const {
@@ -87,8 +87,38 @@ TEST(SemanticOctree, RaysClearAPersonWhoWalkedAwayWhenNothingIsLeftOut) {
   EXPECT_EQ(scene.state(kBetween2), 0);
 }
 
+TEST(SemanticOctree, RaysBeyondTheMappedRangeClearButMarkNothing) {
+  Scene scene;
+  scene.see(*wallPacket(1, {0, 0, 0}, true, false));  // a ghost in front of the wall
+  // The wall is now seen 2 m farther (a door opened): beyond max_depth (4 m) but within the
+  // camera's range (8 m): nothing is mapped there, but the rays clear the ghost.
+  for (long id = 2; id <= 4; ++id) {
+    auto packet = wallPacket(id, {0.02 * id, 0, 0}, false, false);
+    packet->depth.setTo(kWallDepth + 2.0);
+    const KeyFrameCloud cloud = scene.builder.build(*packet);
+    EXPECT_TRUE(cloud.points->empty());
+    EXPECT_EQ(cloud.clearing_rays.size(), 160u * 120u);
+    scene.octree.insert(cloud);
+  }
+  for (const auto& p : walkerSurface()) EXPECT_EQ(scene.state(p), 0) << p.transpose();
+  EXPECT_EQ(scene.state(kBetween2), 0);
+  EXPECT_EQ(scene.state({0.01, 0.01, kWallDepth + 2.0}), -1);  // the ray's end: not mapped
+}
+
+TEST(SemanticOctree, OccupancyThresholdAsksForRepeatedHits) {
+  // At 0.88 (log-odds 1.99) a voxel needs three hits (3 x 0.85); two (1.69) are not enough.
+  SemanticOctree octree(0.05, SemanticOctree::ColourMode::kClass, ClassPalette(), 0.88);
+  const KeyFrameCloudBuilder builder(testParams(), ClassPalette());
+  for (long id = 1; id <= 3; ++id) {
+    octree.insert(builder.build(*wallPacket(id, {0, 0, 0}, false, false)));
+    EXPECT_EQ(octree.isOccupied(kWallCentre), id == 3) << id << " hits";
+  }
+  EXPECT_THROW(SemanticOctree(0.05, SemanticOctree::ColourMode::kClass, ClassPalette(), 0.4),
+               std::invalid_argument);
+}
+
 TEST(SemanticOctree, VoxelsTakeTheirMajorityClassAndCountTaggedHits) {
-  SemanticOctree octree(0.05, 10.0, SemanticOctree::ColourMode::kClass, ClassPalette());
+  SemanticOctree octree(0.05, SemanticOctree::ColourMode::kClass, ClassPalette());
   const ClassPalette palette;
   KeyFrameCloud cloud;
   cloud.points = std::make_shared<DenseCloud>();

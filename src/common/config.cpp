@@ -200,6 +200,10 @@ void readDense(Section s, DenseParams& d) {
   s.read("dilation_px", d.dilation_px);
   if (d.dilation_px < 0 || d.dilation_px > 50) s.fail("dilation_px", "must be within [0, 50]");
   s.readPositive("octree_resolution", d.octree_resolution);
+  s.read("octree_occupancy", d.octree_occupancy);
+  if (!(d.octree_occupancy >= 0.5 && d.octree_occupancy < 0.97))
+    s.fail("octree_occupancy", "must be within [0.5, 0.97)");
+  s.read("octree_filter", d.octree_filter);
   s.read("colour_mode", d.colour_mode);
   if (d.colour_mode != "class" && d.colour_mode != "rgb")
     s.fail("colour_mode", "must be class or rgb");

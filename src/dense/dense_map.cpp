@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 
+#include "ply_slam/dense/semantic_octree.h"
 #include "ply_slam/dense/voxel_filter.h"
 
 namespace ply_slam {
@@ -23,6 +24,13 @@ bool poseChanged(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return d.translation().norm() > 1e-6 || Eigen::AngleAxisd(d.rotation()).angle() > 1e-6;
 }
 
+long countTagged(const DenseCloudPtr& tags) {
+  if (!tags) return -1;
+  long count = 0;
+  for (const auto& p : tags->points) count += p.label == 1;
+  return count;
+}
+
 size_t bytes(const DenseCloudPtr& cloud) {
   return cloud ? cloud->size() * sizeof(pcl::PointXYZRGBL) : 0;
 }
@@ -31,6 +39,11 @@ size_t bytes(const DenseCloudPtr& cloud) {
 
 DenseMap::DenseMap(double voxel_size) : voxel_size_(voxel_size) {
   if (!(voxel_size > 0.0)) throw std::invalid_argument("DenseMap: voxel_size must be > 0");
+}
+
+void DenseMap::keepOnlyOccupied(const SemanticOctree* octree) {
+  octree_ = octree;
+  dirty_ = true;
 }
 
 void DenseMap::insert(KeyFrameCloud cloud) {
@@ -63,6 +76,19 @@ void DenseMap::rebuild() {
   }
   global_ = voxelFilter(all, voxel_size_);
   global_tags_ = have_tags ? voxelFilter(all_tags, voxel_size_) : nullptr;
+  unfiltered_points_ = global_->size();
+  unfiltered_tagged_ = countTagged(global_tags_);
+  if (octree_) {
+    auto kept = std::make_shared<DenseCloud>();
+    auto kept_tags = global_tags_ ? std::make_shared<DenseCloud>() : nullptr;
+    for (size_t i = 0; i < global_->size(); ++i) {
+      if (!octree_->isOccupied(global_->points[i].getVector3fMap().cast<double>())) continue;
+      kept->push_back(global_->points[i]);
+      if (kept_tags) kept_tags->push_back(global_tags_->points[i]);
+    }
+    global_ = kept;
+    global_tags_ = kept_tags;
+  }
   dirty_ = false;
 }
 
@@ -73,12 +99,14 @@ DenseCloudPtr DenseMap::globalCloud() {
 
 size_t DenseMap::numGlobalPoints() { return globalCloud()->size(); }
 
-long DenseMap::taggedPoints() {
+size_t DenseMap::numUnfilteredPoints() {
   if (dirty_ || !global_) rebuild();
-  if (!global_tags_) return -1;
-  long count = 0;
-  for (const auto& p : global_tags_->points) count += p.label == 1;
-  return count;
+  return unfiltered_points_;
+}
+
+long DenseMap::taggedPoints(bool unfiltered) {
+  if (dirty_ || !global_) rebuild();
+  return unfiltered ? unfiltered_tagged_ : countTagged(global_tags_);
 }
 
 size_t DenseMap::memoryBytes() const {

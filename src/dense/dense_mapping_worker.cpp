@@ -16,8 +16,9 @@ ClassPalette paletteOf(const DenseParams& params) {
 DenseMappingWorker::DenseMappingWorker(const DenseParams& params)
     : builder_(params, paletteOf(params)),
       map_(params.voxel_size),
-      octree_(params.octree_resolution, params.max_depth,
-              SemanticOctree::parseColourMode(params.colour_mode), paletteOf(params)) {
+      octree_(params.octree_resolution, SemanticOctree::parseColourMode(params.colour_mode),
+              paletteOf(params), params.octree_occupancy) {
+  if (params.octree_filter) map_.keepOnlyOccupied(&octree_);
   thread_ = std::thread([this] { run(); });
 }
 

@@ -99,7 +99,9 @@ KeyFrameCloud KeyFrameCloudBuilder::build(const KeyFramePacket& packet,
   const cv::Mat& rays = rayTable(packet.camera);
 
   DenseCloud points, tags;
+  std::vector<Eigen::Vector3f> clearing_rays;
   const int stride = params_.stride;
+  const double far_limit = packet.camera.max_depth;
   for (int v = 0; v < size.height; v += stride) {
     const float* depth = packet.depth.ptr<float>(v);
     const cv::Vec3b* bgr = packet.rgb.ptr<cv::Vec3b>(v);
@@ -110,7 +112,11 @@ KeyFrameCloud KeyFrameCloudBuilder::build(const KeyFramePacket& packet,
     const std::uint8_t* tag = tag_mask.empty() ? nullptr : tag_mask.ptr<std::uint8_t>(v);
     for (int u = 0; u < size.width; u += stride) {
       const float z = depth[u];
-      if (!std::isfinite(z) || z < params_.min_depth || z > params_.max_depth || out[u]) continue;
+      if (!std::isfinite(z) || z < params_.min_depth || out[u]) continue;
+      if (z > params_.max_depth) {
+        if (z <= far_limit) clearing_rays.emplace_back(ray[u][0] * z, ray[u][1] * z, z);
+        continue;
+      }
       pcl::PointXYZRGBL p;
       p.x = ray[u][0] * z;
       p.y = ray[u][1] * z;
@@ -136,6 +142,7 @@ KeyFrameCloud KeyFrameCloudBuilder::build(const KeyFramePacket& packet,
   cloud.id = packet.id;
   cloud.stamp = packet.stamp;
   cloud.T_wc = packet.T_wc;
+  cloud.clearing_rays = std::move(clearing_rays);
   // Same points, same voxel grid: the filtered tags line up with the filtered points.
   cloud.points = voxelFilter(points, params_.voxel_size);
   if (!tag_mask.empty()) cloud.tags = voxelFilter(tags, params_.voxel_size);

@@ -43,12 +43,14 @@ struct SemanticOctree::Impl {
   mutable bool stale = false;  // colours and inner nodes need a refresh
 };
 
-SemanticOctree::SemanticOctree(double resolution, double max_range, ColourMode mode,
-                               ClassPalette palette)
-    : palette_(std::move(palette)), mode_(mode), max_range_(max_range) {
+SemanticOctree::SemanticOctree(double resolution, ColourMode mode, ClassPalette palette,
+                               double occupancy)
+    : palette_(std::move(palette)), mode_(mode) {
   if (!(resolution > 0.0)) throw std::invalid_argument("SemanticOctree: resolution must be > 0");
-  if (!(max_range > 0.0)) throw std::invalid_argument("SemanticOctree: max_range must be > 0");
+  if (!(occupancy >= 0.5 && occupancy < 0.97))  // 0.97: OctoMap's clamping limit
+    throw std::invalid_argument("SemanticOctree: occupancy must be within [0.5, 0.97)");
   impl_ = std::make_unique<Impl>(resolution);
+  impl_->tree.setOccupancyThres(occupancy);
 }
 
 SemanticOctree::~SemanticOctree() = default;
@@ -63,21 +65,35 @@ void SemanticOctree::insert(const KeyFrameCloud& cloud) {
   if (!cloud.points) throw std::invalid_argument("SemanticOctree::insert: cloud has no points");
   if (cloud.tags && cloud.tags->size() != cloud.points->size())
     throw std::invalid_argument("SemanticOctree::insert: tags and points differ in size");
+  auto& tree = impl_->tree;
   const Eigen::Isometry3f T_wc = cloud.T_wc.cast<float>();
-  octomap::Pointcloud scan;
-  scan.reserve(cloud.points->size());
-  for (const auto& p : cloud.points->points) {
-    const Eigen::Vector3f w = T_wc * p.getVector3fMap();
-    scan.push_back(w.x(), w.y(), w.z());
-  }
   const Eigen::Vector3f c = T_wc.translation();
-  // discretize: one ray per end voxel; lazy: no pruning, so every leaf keeps its own colour.
-  impl_->tree.insertPointCloud(scan, octomap::point3d(c.x(), c.y(), c.z()), max_range_, true, true);
-  for (size_t i = 0; i < scan.size(); ++i) {
+  const octomap::point3d origin(c.x(), c.y(), c.z());
+  // As OcTree::insertPointCloud with discretize: one ray per end voxel, and a voxel a point
+  // ends in is not also made free by another ray of the same keyframe.
+  octomap::KeySet occupied, free, clearing_ends;
+  octomap::KeyRay ray;
+  auto castTo = [&](const octomap::point3d& end, octomap::KeySet& ends) {
     octomap::OcTreeKey key;
-    if (!impl_->tree.coordToKeyChecked(scan[i], key)) continue;
-    impl_->voxels[key].add(cloud.points->points[i], cloud.tags && cloud.tags->points[i].label);
+    if (!tree.coordToKeyChecked(end, key) || !ends.insert(key).second) return;
+    if (tree.computeRayKeys(origin, end, ray)) free.insert(ray.begin(), ray.end());
+  };
+  for (size_t i = 0; i < cloud.points->size(); ++i) {
+    const Eigen::Vector3f w = T_wc * cloud.points->points[i].getVector3fMap();
+    const octomap::point3d end(w.x(), w.y(), w.z());
+    castTo(end, occupied);
+    octomap::OcTreeKey key;
+    if (tree.coordToKeyChecked(end, key))
+      impl_->voxels[key].add(cloud.points->points[i], cloud.tags && cloud.tags->points[i].label);
   }
+  for (const Eigen::Vector3f& p : cloud.clearing_rays) {
+    const Eigen::Vector3f w = T_wc * p;
+    castTo(octomap::point3d(w.x(), w.y(), w.z()), clearing_ends);
+  }
+  // lazy: no pruning, so every leaf keeps its own colour.
+  for (const auto& key : free)
+    if (!occupied.count(key)) tree.updateNode(key, false, true);
+  for (const auto& key : occupied) tree.updateNode(key, true, true);
   impl_->stale = true;
 }
 
@@ -124,6 +140,11 @@ std::vector<SemanticOctree::Voxel> SemanticOctree::occupiedVoxels() const {
     out.push_back(v);
   }
   return out;
+}
+
+bool SemanticOctree::isOccupied(const Eigen::Vector3d& p) const {
+  const octomap::ColorOcTreeNode* node = impl_->tree.search(p.x(), p.y(), p.z());
+  return node && impl_->tree.isNodeOccupied(node);
 }
 
 size_t SemanticOctree::numOccupied() const {

@@ -128,8 +128,8 @@ int run(const Options& options) {
       dense.palette.empty() ? ClassPalette() : ClassPalette::fromFile(dense.palette);
   const KeyFrameCloudBuilder builder(dense, palette);
   const auto mode = SemanticOctree::parseColourMode(dense.colour_mode);
-  SemanticOctree estimated(dense.octree_resolution, dense.max_depth, mode, palette);
-  SemanticOctree ground_truth(dense.octree_resolution, dense.max_depth, mode, palette);
+  SemanticOctree estimated(dense.octree_resolution, mode, palette, dense.octree_occupancy);
+  SemanticOctree ground_truth(dense.octree_resolution, mode, palette, dense.octree_occupancy);
   double position_error_sum = 0.0, angle_error_sum = 0.0;
   for (size_t i = 0; i < keyframes.size(); ++i) {
     const RgbdImages images =

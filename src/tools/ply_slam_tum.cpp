@@ -179,6 +179,7 @@ std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, con
       walker_any += v.tagged > 0;
     }
     json << ",\n  \"dense\": {\"keyframes\": " << map.numKeyFrames() << ", \"points\": " << points
+         << ", \"points_before_octree_filter\": " << map.numUnfilteredPoints()
          << ", \"occupied_voxels\": " << voxels.size()
          << ", \"ms_per_keyframe_median\": " << percentile(ms, 0.5)
          << ", \"ms_per_keyframe_p95\": " << percentile(ms, 0.95)
@@ -189,8 +190,12 @@ std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, con
          << ", \"memory_bytes\": " << map.memoryBytes() + octree.memoryBytes();
     if (counted_walkers) {
       const long walker_points = map.taggedPoints();
+      const long unfiltered = map.taggedPoints(true);
       json << ",\n    \"walkers\": {\"points\": " << walker_points
            << ", \"points_share\": " << (points ? double(walker_points) / points : 0.0)
+           << ", \"points_before_octree_filter\": " << unfiltered
+           << ", \"points_before_octree_filter_share\": "
+           << double(unfiltered) / std::max<size_t>(1, map.numUnfilteredPoints())
            << ", \"voxels_majority\": " << walker_majority << ", \"voxels_majority_share\": "
            << (voxels.empty() ? 0.0 : double(walker_majority) / voxels.size())
            << ", \"voxels_any\": " << walker_any << ", \"voxels_any_share\": "

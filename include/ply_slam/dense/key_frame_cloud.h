@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 // PCL stays out of this widely included header: the cloud types are only declared here.
 namespace pcl {
@@ -23,6 +24,9 @@ struct KeyFrameCloud {
   double stamp = 0.0;
   Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
   DenseCloudPtr points;
+  // Camera-frame points beyond the map's max_depth (up to the camera's): too noisy to map,
+  // but the space in front of them is free. The octree clears along these rays.
+  std::vector<Eigen::Vector3f> clearing_rays;
   // Evaluation only (may be null): the same points, label = 1 where the source pixel was
   // marked in the builder's tag mask (e.g. ground-truth walker masks), else 0.
   DenseCloudPtr tags;

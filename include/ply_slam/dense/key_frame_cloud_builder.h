@@ -11,7 +11,8 @@ namespace ply_slam {
 
 // KeyFramePacket -> coloured, labelled point cloud in the camera frame: every `stride`-th
 // pixel with depth in [min_depth, max_depth], except those of dynamic instances (the packet's
-// dynamic mask and the instances marked dynamic, dilated by dilation_px), voxel-filtered.
+// dynamic mask and the instances marked dynamic, dilated by dilation_px), voxel-filtered; and
+// the rays to the pixels beyond max_depth (up to the camera's max_depth) for free space.
 // Raw pixels are undistorted with the packet's camera (a table computed once per camera).
 class KeyFrameCloudBuilder {
  public:
