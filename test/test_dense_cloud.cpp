@@ -192,6 +192,21 @@ TEST(VoxelFilter, OnePointPerVoxelInsideTheVoxel) {
   EXPECT_THROW(voxelFilter(cloud, 0.0), std::invalid_argument);
 }
 
+TEST(VoxelFilter, FiltersCloudsTooLargeForOneVoxelGrid) {
+  // 100 m x 100 m x 1 m at 1 cm: 1e10 voxels, beyond VoxelGrid's 32-bit voxel numbers.
+  DenseCloud cloud;
+  for (const float x : {0.f, 100.f})
+    for (const float y : {0.f, 100.f})
+      for (const float z : {0.f, 1.f})
+        for (int i = 0; i < 3; ++i) {
+          pcl::PointXYZRGBL p;
+          p.x = x + 0.001f * i + 0.002f, p.y = y + 0.002f, p.z = z + 0.002f;
+          cloud.push_back(p);
+        }
+  const DenseCloudPtr out = voxelFilter(cloud, 0.01);
+  EXPECT_EQ(out->size(), 8u);  // one point per corner, from three
+}
+
 TEST(DenseMap, PlacesKeyFramesAndRePlacesThoseWhosePoseChanged) {
   DenseMap map(0.01);
   auto one = [](double x, double y, double z) {
