@@ -216,8 +216,11 @@ TEST(DenseMap, PlacesKeyFramesAndRePlacesThoseWhosePoseChanged) {
     cloud->push_back(p);
     return cloud;
   };
-  KeyFrameCloud a{1, 0.0, Eigen::Isometry3d::Identity(), one(0, 0, 1)};
-  KeyFrameCloud b{2, 1.0, Eigen::Isometry3d::Identity(), one(0, 0, 2)};
+  KeyFrameCloud a, b;
+  a.id = 1;
+  a.points = one(0, 0, 1);
+  b.id = 2;
+  b.points = one(0, 0, 2);
   b.T_wc.translation() = Eigen::Vector3d(5, 0, 0);
   map.insert(a);
   map.insert(b);

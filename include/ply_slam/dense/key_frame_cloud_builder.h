@@ -13,7 +13,8 @@ namespace ply_slam {
 // pixel with depth in [min_depth, max_depth], except those of dynamic instances (the packet's
 // dynamic mask and the instances marked dynamic, dilated by dilation_px), voxel-filtered; and
 // the rays to the pixels beyond max_depth (up to the camera's max_depth) for free space.
-// Raw pixels are undistorted with the packet's camera (a table computed once per camera).
+// Raw pixels are undistorted with the packet's camera (a table computed once per camera and
+// cached, so one builder must not be shared between threads).
 class KeyFrameCloudBuilder {
  public:
   KeyFrameCloudBuilder(const DenseParams& params, ClassPalette palette);
