@@ -12,6 +12,7 @@ PLY_SLAM_PACKAGES=(
   build-essential cmake catkin python3-catkin-pkg
   libopencv-dev libopencv-contrib-dev libceres-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev googletest opencv-doc
+  libpcl-dev liboctomap-dev
 )
 
 ply_slam_install_packages() {

@@ -232,6 +232,27 @@ void readDynamic(Section s, DynamicParams& d) {
   s.rejectUnknownKeys();
 }
 
+void readDense(Section s, DenseParams& d) {
+  s.read("enabled", d.enabled);
+  s.readPositive("stride", d.stride);
+  s.readPositive("min_depth", d.min_depth);
+  s.readPositive("max_depth", d.max_depth);
+  if (d.max_depth <= d.min_depth) s.fail("max_depth", "must be > min_depth");
+  s.readPositive("voxel_size", d.voxel_size);
+  s.read("dilation_px", d.dilation_px);
+  if (d.dilation_px < 0 || d.dilation_px > 50) s.fail("dilation_px", "must be within [0, 50]");
+  s.readPositive("octree_resolution", d.octree_resolution);
+  s.read("octree_occupancy", d.octree_occupancy);
+  if (!(d.octree_occupancy >= 0.5 && d.octree_occupancy < 0.97))
+    s.fail("octree_occupancy", "must be within [0.5, 0.97)");
+  s.read("octree_filter", d.octree_filter);
+  s.read("colour_mode", d.colour_mode);
+  if (d.colour_mode != "class" && d.colour_mode != "rgb")
+    s.fail("colour_mode", "must be class or rgb");
+  s.read("palette", d.palette);
+  s.rejectUnknownKeys();
+}
+
 }  // namespace
 
 SystemConfig loadConfig(const std::string& path) {
@@ -255,6 +276,7 @@ SystemConfig loadConfig(const std::string& path) {
   readSegmentation(top.child("segmentation"), config.segmentation);
   readTracking(top.child("tracking"), config.tracking);
   readDynamic(top.child("dynamic"), config.dynamic);
+  readDense(top.child("dense"), config.dense);
   top.rejectUnknownKeys();
   return config;
 }
