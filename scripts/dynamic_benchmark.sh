@@ -44,8 +44,9 @@ run() {  # name sequence segmenter mode [model size]
     args=(--model "${PLY_SLAM_SHARED}/models/yolov8n-seg-$5.onnx" --input "$5")
   fi
   echo "[dynamic] $name"
+  rm -rf "${OUT:?}/$name"  # a failed run must not leave an old summary behind
   "${PLY_SLAM_BIN}/ply_slam_tum" --sequence "$seq" --config "$CONFIG" --out "$OUT/$name" \
-    --segmenter "$seg" --dynamic "$mode" "${args[@]}" >"$OUT/$name.log" 2>&1 ||
+    --segmenter "$seg" --dynamic "$mode" "${args[@]}" >"$OUT/$name.log" 2>&1 </dev/null ||
     echo "[dynamic] $name failed: $OUT/$name.log" >&2
   printf '%s\t%s\n' "$name" "$OUT/$name/summary.json" >>"$ROWS"
 }
