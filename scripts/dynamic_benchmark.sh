@@ -67,22 +67,26 @@ rows, results, command = sys.argv[1], sys.argv[2], sys.argv[3]
 lines = ["Command: `%s` (config/tum_fr1.yaml; walkers = fr1_rpy_150_349_walkers, static = its twin "
          "rgbd_dataset_freiburg1_rpy_150_349). Walker features: keypoints on a ground-truth walker mask; "
          "static: farther than 5 px from one. *Kept*: not dropped by the rejection; *used*: inlier of the "
-         "pose optimisation." % command, "",
-         "| run | segmenter | --dynamic | ATE RMSE (m) | lost | walker features kept | walker features used | static dropped | tracking ms median | segmentation ms median |",
-         "|---|---|---|---|---|---|---|---|---|---|"]
+         "pose optimisation. Dense ghosts: share of the dense map's points, and of the octree's occupied "
+         "voxels, that mostly come from ground-truth walker pixels (section on issue #7)." % command, "",
+         "| run | segmenter | --dynamic | ATE RMSE (m) | lost | walker features kept | walker features used | static dropped | dense points from walkers | octree voxels from walkers | tracking ms median | segmentation ms median |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for line in open(rows):
     name, path = line.rstrip("\n").split("\t")
     try:
         s = json.load(open(path))
     except Exception:
-        lines.append("| %s | failed | | | | | | | | |" % name)
+        lines.append("| %s | failed | | | | | | | | | | |" % name)
         continue
     c = s.get("feature_classification")
     pct = lambda k: "%.1f %%" % (100 * c[k]) if c else "–"
     seg = s["segmenter"]
-    lines.append("| %s | %s | %s | %.4f | %d | %s | %s | %s | %.1f | %s |" % (
+    w = s.get("dense", {}).get("walkers")
+    ghost = lambda k: "%.2f %%" % (100 * w[k]) if w else "–"
+    lines.append("| %s | %s | %s | %.4f | %d | %s | %s | %s | %s | %s | %.1f | %s |" % (
         name, seg, s["dynamic_mode"], s["ate"]["rmse"] if "ate" in s else float("nan"), s["lost"],
         pct("walker_kept_share"), pct("walker_inlier_share"), pct("static_dropped_share"),
+        ghost("points_share"), ghost("voxels_majority_share"),
         s["tracking_ms_median"], "%.0f" % s["segmentation_ms_median"] if seg != "none" else "–"))
 text = open(results).read()
 begin, end = "<!-- dynamic:begin -->", "<!-- dynamic:end -->"
