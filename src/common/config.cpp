@@ -190,17 +190,8 @@ void readSegmentation(Section s, YoloParams& y) {
   s.rejectUnknownKeys();
 }
 
-}  // namespace
-
-SystemConfig loadConfig(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError("config " + path + ": cannot open the file");
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("config " + path + ": not valid YAML: " + e.what());
-  }
+// Every check of loadConfig, on a parsed document; `path` names it in errors.
+SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
 
   SystemConfig config;
@@ -214,6 +205,30 @@ SystemConfig loadConfig(const std::string& path) {
   readTracking(top.child("tracking"), config.tracking);
   top.rejectUnknownKeys();
   return config;
+}
+
+}  // namespace
+
+SystemConfig loadConfig(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError("config " + path + ": cannot open the file");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config " + path + ": not valid YAML: " + e.what());
+  }
+  return parseConfig(root, path);
+}
+
+SystemConfig loadConfigFromString(const std::string& yaml_text, const std::string& source_name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config " + source_name + ": not valid YAML: " + e.what());
+  }
+  return parseConfig(root, source_name);
 }
 
 }  // namespace ply_slam

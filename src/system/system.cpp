@@ -1,5 +1,6 @@
 #include "ply_slam/system/system.h"
 
+#include <algorithm>
 #include <cmath>
 #include <future>
 #include <opencv2/imgproc.hpp>
@@ -96,7 +97,15 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
                              images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
   std::set<int> dynamic_ids;
   const cv::Mat dynamic_mask = dynamicMask(instances, dynamic_ids);
-  if (!dynamic_mask.empty()) result.dynamic_features = frame.features.removeMasked(dynamic_mask);
+  if (!dynamic_mask.empty()) {
+    for (const auto& kp : frame.features.keypoints) {
+      const int u = std::clamp(cvRound(kp.pt.x), 0, dynamic_mask.cols - 1);
+      const int v = std::clamp(cvRound(kp.pt.y), 0, dynamic_mask.rows - 1);
+      if (dynamic_mask.at<uchar>(v, u)) result.dynamic_keypoints.push_back(kp);
+    }
+    result.dynamic_features = frame.features.removeMasked(dynamic_mask);
+  }
+  result.keypoints = frame.features.keypoints;
   result.timing.features_ms = total.elapsedMs();
   if (lines.valid()) frame.setLines(lines.get());
 

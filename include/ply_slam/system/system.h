@@ -33,6 +33,9 @@ struct FrameResult {
   TrackingResult tracking;
   FrameTiming timing;
   size_t dynamic_features = 0;  // dropped because they lay on a moving object
+  // For display (tracking image): the keypoints used and those dropped as dynamic, raw pixels.
+  std::vector<cv::KeyPoint> keypoints;
+  std::vector<cv::KeyPoint> dynamic_keypoints;
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
 };
@@ -52,6 +55,10 @@ class System {
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
   // Features on instances of moving classes (people, animals, vehicles) are not used.
   FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
+
+  // Corrections from the mapping side (mapping_node's ~map_update): keyframe poses, landmark
+  // positions and merges go into the map the tracker uses. Returns the entries applied.
+  size_t applyMapUpdate(const MapUpdate& update) { return map_.applyUpdate(update); }
 
   const Trajectory& cameraTrajectory() const { return camera_trajectory_; }  // tracked frames
   Trajectory keyFrameTrajectory() const;
