@@ -48,7 +48,8 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   world_frame_ = pnh_.param<std::string>("world_frame", "map");
   frame_queue_size_ = static_cast<size_t>(std::max(1, pnh_.param("frame_queue_size", 100)));
   const int sync_queue = std::max(1, pnh_.param("sync_queue_size", 10));
-  const double sync_slop = pnh_.param("sync_slop", 0.02);
+  sync_slop_ = pnh_.param("sync_slop", 0.02);
+  flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
 
   if (!config_.segmentation.model_path.empty()) {
     segmenter_ = std::make_unique<YoloV8Seg>(config_.segmentation);
@@ -66,11 +67,11 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   rgb_sub_.subscribe(nh_, pnh_.param<std::string>("rgb_topic", "rgb/image"), sync_queue);
   depth_sub_.subscribe(nh_, pnh_.param<std::string>("depth_topic", "depth/image"), sync_queue);
-  rgb_sub_.registerCallback([this](const sensor_msgs::ImageConstPtr&) { ++rgb_received_; });
-  depth_sub_.registerCallback([this](const sensor_msgs::ImageConstPtr&) { ++depth_received_; });
+  rgb_sub_.registerCallback(&TrackingNode::onRgb, this);
+  depth_sub_.registerCallback(&TrackingNode::onDepth, this);
   sync_ = std::make_unique<message_filters::Synchronizer<SyncPolicy>>(SyncPolicy(sync_queue),
                                                                       rgb_sub_, depth_sub_);
-  sync_->setMaxIntervalDuration(ros::Duration(sync_slop));
+  sync_->setMaxIntervalDuration(ros::Duration(sync_slop_));
   // The shortest time between two images of one stream: lets the synchroniser emit a pair as
   // soon as no later message could pair better, instead of waiting for the next frame (the
   // last frame of a bag would otherwise never be emitted). 0 = unknown.
@@ -85,12 +86,15 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   update_sub_ =
       nh_.subscribe(pnh_.param<std::string>("map_update_topic", "mapping_node/map_update"), 10,
                     &TrackingNode::onMapUpdate, this);
+  if (flush_after_s_ > 0)
+    flush_timer_ = nh_.createWallTimer(ros::WallDuration(flush_after_s_ / 2),
+                                       [this](const ros::WallTimerEvent&) { flushStalledPair(); });
   worker_ = std::thread(&TrackingNode::work, this);
   ROS_INFO_STREAM("tracking_node: config "
                   << config_.source_path << ", rgb " << rgb_sub_.getTopic() << ", depth "
                   << depth_sub_.getTopic() << ", camera_info " << info_sub_.getTopic()
                   << (use_camera_info_ ? "" : " (ignored)") << ", sync queue " << sync_queue
-                  << " slop " << sync_slop << " s");
+                  << " slop " << sync_slop_ << " s");
 }
 
 TrackingNode::~TrackingNode() {
@@ -110,10 +114,40 @@ TrackingNode::~TrackingNode() {
                   << bad_input_.summary() << "), median " << median(total_ms_) << " ms per frame");
 }
 
+void TrackingNode::onRgb(const sensor_msgs::ImageConstPtr& rgb) {
+  ++rgb_received_;
+  newest_rgb_ = rgb;
+  newest_arrival_ = ros::WallTime::now();
+}
+
+void TrackingNode::onDepth(const sensor_msgs::ImageConstPtr& depth) {
+  ++depth_received_;
+  newest_depth_ = depth;
+  newest_arrival_ = ros::WallTime::now();
+}
+
 void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
                             const sensor_msgs::ImageConstPtr& depth) {
+  if (!last_paired_rgb_stamp_.isZero() && rgb->header.stamp <= last_paired_rgb_stamp_ &&
+      flushed_ > 0)
+    return;  // already tracked by flushStalledPair
+  last_paired_rgb_stamp_ = std::max(last_paired_rgb_stamp_, rgb->header.stamp);
+  last_paired_depth_stamp_ = std::max(last_paired_depth_stamp_, depth->header.stamp);
   ++synchronised_;
   enqueue({rgb, depth, nullptr});
+}
+
+// Runs on the spinner thread like the subscriber callbacks, so it needs no lock of its own.
+void TrackingNode::flushStalledPair() {
+  if (!newest_rgb_ || !newest_depth_) return;
+  if ((ros::WallTime::now() - newest_arrival_).toSec() < flush_after_s_) return;
+  if (newest_rgb_->header.stamp <= last_paired_rgb_stamp_ ||
+      newest_depth_->header.stamp <= last_paired_depth_stamp_)
+    return;
+  if (std::abs((newest_rgb_->header.stamp - newest_depth_->header.stamp).toSec()) > sync_slop_)
+    return;
+  ++flushed_;
+  onImages(newest_rgb_, newest_depth_);
 }
 
 void TrackingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& update) {
@@ -242,8 +276,8 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
 void TrackingNode::publishStats() {
   std::ostringstream s;
   s << "rgb_received=" << rgb_received_ << " depth_received=" << depth_received_
-    << " synchronised=" << synchronised_ << " tracked=" << tracked_ << " lost=" << lost_
-    << " keyframes=" << keyframes_ << " map_updates=" << updates_
+    << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
+    << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
     << " median_ms=" << median(total_ms_);
   const std::string kinds = bad_input_.summary();

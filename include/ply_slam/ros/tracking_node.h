@@ -41,6 +41,9 @@ class TrackingNode {
   };
 
   void onImages(const sensor_msgs::ImageConstPtr& rgb, const sensor_msgs::ImageConstPtr& depth);
+  void onRgb(const sensor_msgs::ImageConstPtr& rgb);
+  void onDepth(const sensor_msgs::ImageConstPtr& depth);
+  void flushStalledPair();
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& update);
   void enqueue(Job job);
@@ -70,6 +73,15 @@ class TrackingNode {
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;
 
+  // The synchroniser emits a pair only once a later message proves no better match can come,
+  // so the last pair of a stream (a bag's last frame) would wait for ever. When the stream has
+  // been quiet for flush_after_s_ the newest unpaired rgb + depth are tracked as a pair.
+  double sync_slop_ = 0.02, flush_after_s_ = 0.5;
+  sensor_msgs::ImageConstPtr newest_rgb_, newest_depth_;
+  ros::WallTime newest_arrival_;
+  ros::Time last_paired_rgb_stamp_, last_paired_depth_stamp_;
+  ros::WallTimer flush_timer_;
+
   std::mutex info_mutex_;
   sensor_msgs::CameraInfoConstPtr camera_info_;
 
@@ -81,7 +93,8 @@ class TrackingNode {
 
   // Counters for ~stats and the shutdown report.
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
-  std::atomic<size_t> behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0}, updates_{0};
+  std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
+      updates_{0};
   std::vector<double> total_ms_;  // worker thread only
 };
 
