@@ -12,6 +12,13 @@ PLY_SLAM_PACKAGES=(
   build-essential cmake catkin python3-catkin-pkg
   libopencv-dev libopencv-contrib-dev libceres-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev googletest opencv-doc
+  # ROS 1 layer (nodes, messages, rostest) and scripts/tum_to_bag.py, rviz
+  ros-base-dev libroscpp-dev librosbag-dev python3-rosbag rosbash ros-message-generation
+  ros-message-runtime librostest-dev python3-rostest ros-std-msgs ros-std-srvs ros-sensor-msgs
+  ros-geometry-msgs ros-nav-msgs ros-visualization-msgs libstd-msgs-dev libstd-srvs-dev
+  libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
+  libcv-bridge-dev libmessage-filters-dev libtf2-dev libtf2-ros-dev python3-sensor-msgs
+  python3-geometry-msgs python3-std-msgs python3-opencv python3-numpy python3-yaml rviz
 )
 
 ply_slam_install_packages() {
