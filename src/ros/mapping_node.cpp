@@ -55,6 +55,23 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   camera_frame_ =
       withoutLeadingSlash(pnh_.param<std::string>("camera_frame", "camera_color_optical_frame"));
 
+  // A fixed placement of the SLAM world in the map frame, e.g. to show the optical-frame world of
+  // a TUM bag upright: x y z (m) yaw pitch roll (rad), as tf2_ros static_transform_publisher.
+  std::vector<double> world_in_map;
+  if (pnh_.getParam("world_in_map", world_in_map) && odom_frame_.empty() &&
+      world_frame_ != map_frame_) {
+    if (world_in_map.size() != 6)
+      throw std::invalid_argument("~world_in_map needs 6 numbers: x y z yaw pitch roll");
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(world_in_map[0], world_in_map[1], world_in_map[2]);
+    T.linear() = (Eigen::AngleAxisd(world_in_map[3], Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(world_in_map[4], Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(world_in_map[5], Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    static_broadcaster_.sendTransform(
+        toTransformMsg(T, ros::Time::now(), map_frame_, world_frame_));
+  }
+
   points_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("map_points", 1, true);
   lines_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("map_lines", 1, true);
   keyframes_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("keyframes", 1, true);
@@ -178,6 +195,7 @@ void MappingNode::publishMap(const ros::Time& stamp) {
     lines.points.push_back(a);
     lines.points.push_back(b);
   }
+  if (lines.points.empty()) lines.action = visualization_msgs::Marker::DELETEALL;  // none yet
   visualization_msgs::MarkerArray markers;
   markers.markers.push_back(lines);
   lines_pub_.publish(markers);
