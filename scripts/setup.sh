@@ -6,7 +6,7 @@ set -euo pipefail
 
 PLY_SLAM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 PLY_SLAM_WS="${PLY_SLAM_ROOT}/build/ws"
-PLY_SLAM_BIN="${PLY_SLAM_WS}/devel/lib/ply_slam"
+PLY_SLAM_BIN="${PLY_SLAM_BIN:-${PLY_SLAM_WS}/devel/lib/ply_slam}"  # preset: use other binaries
 
 PLY_SLAM_PACKAGES=(
   build-essential cmake catkin python3-catkin-pkg

@@ -50,17 +50,17 @@ Scene makeScene(const Eigen::Vector3d& object_motion, unsigned seed) {
   return s;
 }
 
-DepthNoiseModel noise() {
-  DepthNoiseModel n;
-  n.alpha = 2.5e-5;
-  n.gamma = 1e-5;
-  return n;
+PinholeCamera noisyCamera() {
+  PinholeCamera cam = syntheticCamera();
+  cam.depth_noise.alpha = 2.5e-5;
+  cam.depth_noise.gamma = 1e-5;
+  return cam;
 }
 
 TEST(DelaunayConsistency, MovingObjectGetsHighWeightsStaticLow) {
   // 0.16 m between the compared frames: a person walking 1.2 m/s, frames 4 apart.
   const Scene s = makeScene({0.15, 0.0, 0.05}, 1);
-  const DelaunayConsistency check(noise(), {});
+  const DelaunayConsistency check(noisyCamera(), {});
   const auto w = check.weights(s.features, 640, 480);
   double moving = 0;
   int n_moving = 0, n_still = 0, still_in_dp = 0;
@@ -85,7 +85,7 @@ TEST(DelaunayConsistency, MovingObjectGetsHighWeightsStaticLow) {
 
 TEST(DelaunayConsistency, StaticSceneIsConsistent) {
   const Scene s = makeScene(Eigen::Vector3d::Zero(), 2);
-  const auto w = DelaunayConsistency(noise(), {}).weights(s.features, 640, 480);
+  const auto w = DelaunayConsistency(noisyCamera(), {}).weights(s.features, 640, 480);
   int high = 0;
   for (double x : w) high += x > 0.5;
   EXPECT_EQ(high, 0);
@@ -93,7 +93,7 @@ TEST(DelaunayConsistency, StaticSceneIsConsistent) {
 
 TEST(DynamicFeatureFilter, ActiveInstanceDroppedWholePassiveAndStaticKept) {
   const Scene s = makeScene({0.15, 0.0, 0.05}, 3);
-  const DynamicFeatureFilter filter(noise(), {});
+  const DynamicFeatureFilter filter(noisyCamera(), {});
   // The moving object labelled person (active): all of its features go.
   auto d = filter.decide(s.features, s.instance,
                          {{1, ClassMotion::kActive}, {2, ClassMotion::kPassive}}, 640, 480);
@@ -110,18 +110,53 @@ TEST(DynamicFeatureFilter, ActiveInstanceDroppedWholePassiveAndStaticKept) {
   }
   EXPECT_LE(static_dropped, 0.05 * static_total);
 
-  // The same object labelled as a static class is never dropped as a whole; only its features
-  // whose own weight is high go.
+  // The same object labelled as a static class is never dropped as a whole (its features still
+  // go one by one, on their own weights, as it does move).
   d = filter.decide(s.features, s.instance, {{1, ClassMotion::kStatic}}, 640, 480);
   EXPECT_FALSE(d.dynamic_instances.count(1));
-  int kept_on_object = 0;
-  for (size_t i = 0; i < s.features.size(); ++i) kept_on_object += s.moving[i] && !d.dynamic[i];
-  EXPECT_GT(kept_on_object, 0);
+}
+
+// The label rules: an instance is dynamic as a whole when its dynamic degree r_d exceeds
+// Th_min (active class) or Th_max (passive class); an active instance without enough matched
+// features to judge is presumed dynamic, a passive one is not.
+TEST(DynamicFeatureFilter, LabelRulesFollowTheThresholds) {
+  Scene s = makeScene({0.15, 0.0, 0.05}, 5);
+  // Instance 3: half the moving object and as many static background features.
+  int moving = 0, still = 0;
+  for (size_t i = 0; i < s.features.size(); ++i) {
+    if (s.moving[i] && moving < 20) s.instance[i] = 3, ++moving;
+    if (!s.moving[i] && s.instance[i] == 0 && still < 20) s.instance[i] = 3, ++still;
+  }
+  const auto degree = DynamicFeatureFilter(noisyCamera(), {})
+                          .decide(s.features, s.instance, {{3, ClassMotion::kActive}}, 640, 480)
+                          .degree.at(3);
+  ASSERT_GT(degree, 0.3);
+  ASSERT_LT(degree, 0.7);
+  auto judged = [&](ClassMotion kind, double active, double passive) {
+    DynamicFilterParams p;
+    p.active_degree = active;
+    p.passive_degree = passive;
+    return DynamicFeatureFilter(noisyCamera(), p)
+               .decide(s.features, s.instance, {{3, kind}}, 640, 480)
+               .dynamic_instances.count(3) > 0;
+  };
+  EXPECT_TRUE(judged(ClassMotion::kActive, degree - 0.05, 0.95));
+  EXPECT_FALSE(judged(ClassMotion::kActive, degree + 0.05, 0.95));
+  EXPECT_TRUE(judged(ClassMotion::kPassive, 0.05, degree - 0.05));
+  EXPECT_FALSE(judged(ClassMotion::kPassive, 0.05, degree + 0.05));
+  EXPECT_FALSE(judged(ClassMotion::kStatic, 0.0, 0.0));
+
+  // Instances no feature lies on: the person is presumed moving, the chair is not.
+  const auto d = DynamicFeatureFilter(noisyCamera(), {})
+                     .decide(s.features, s.instance,
+                             {{8, ClassMotion::kActive}, {9, ClassMotion::kPassive}}, 640, 480);
+  EXPECT_TRUE(d.dynamic_instances.count(8));
+  EXPECT_FALSE(d.dynamic_instances.count(9));
 }
 
 TEST(DynamicFeatureFilter, StaticSceneKeepsEverything) {
   const Scene s = makeScene(Eigen::Vector3d::Zero(), 4);
-  const auto d = DynamicFeatureFilter(noise(), {})
+  const auto d = DynamicFeatureFilter(noisyCamera(), {})
                      .decide(s.features, s.instance,
                              {{1, ClassMotion::kActive}, {2, ClassMotion::kPassive}}, 640, 480);
   EXPECT_TRUE(d.dynamic_instances.empty());

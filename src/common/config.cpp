@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -190,6 +191,45 @@ void readSegmentation(Section s, YoloParams& y) {
   s.rejectUnknownKeys();
 }
 
+void readDynamic(Section s, DynamicParams& d) {
+  s.read("mode", d.mode);
+  if (d.mode != "off" && d.mode != "geometric" && d.mode != "semantic" && d.mode != "full")
+    s.fail("mode", "must be off, geometric, semantic or full");
+  DynamicFilterParams& f = d.filter;
+  s.readPositive("sigma_factor", f.consistency.sigma_factor);
+  s.read("min_change", f.consistency.min_change);
+  if (f.consistency.min_change < 0) s.fail("min_change", "must be >= 0");
+  s.read("weight_threshold", f.weight_threshold);
+  if (f.weight_threshold < 0 || f.weight_threshold >= 1)
+    s.fail("weight_threshold", "must be in [0, 1)");
+  s.read("active_degree", f.active_degree);
+  if (f.active_degree < 0 || f.active_degree >= 1) s.fail("active_degree", "must be in [0, 1)");
+  s.read("passive_degree", f.passive_degree);
+  if (f.passive_degree < f.active_degree || f.passive_degree >= 1)
+    s.fail("passive_degree", "must be in [active_degree, 1)");
+  s.readPositive("pixel_sigma", f.consistency.pixel_sigma);
+  s.read("minority_share", f.consistency.minority_share);
+  if (f.consistency.minority_share < 0 || f.consistency.minority_share > 1)
+    s.fail("minority_share", "must be in [0, 1]");
+  s.read("min_judged_features", f.min_judged_features);
+  if (f.min_judged_features < 1) s.fail("min_judged_features", "must be >= 1");
+  s.read("mask_dilation_px", d.mask_dilation_px);
+  if (d.mask_dilation_px < 0 || d.mask_dilation_px > 50)
+    s.fail("mask_dilation_px", "must be in [0, 50]");
+  s.read("baseline_frames", d.baseline_frames);
+  if (d.baseline_frames < 1 || d.baseline_frames > 30)
+    s.fail("baseline_frames", "must be in [1, 30]");
+  s.readPositive("match_radius_px", d.match_radius_px);
+  s.readPositive("max_descriptor_distance", d.max_descriptor_distance);
+  s.read("active_classes", d.active_classes);
+  s.read("passive_classes", d.passive_classes);
+  for (const auto& name : d.active_classes)
+    if (std::find(d.passive_classes.begin(), d.passive_classes.end(), name) !=
+        d.passive_classes.end())
+      s.fail("passive_classes", "'" + name + "' is also an active class");
+  s.rejectUnknownKeys();
+}
+
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
@@ -203,6 +243,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   readLines(top.child("lines"), config.lines);
   readSegmentation(top.child("segmentation"), config.segmentation);
   readTracking(top.child("tracking"), config.tracking);
+  readDynamic(top.child("dynamic"), config.dynamic);
   top.rejectUnknownKeys();
   return config;
 }

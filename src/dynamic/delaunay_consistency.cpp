@@ -1,18 +1,60 @@
 #include "ply_slam/dynamic/delaunay_consistency.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <opencv2/imgproc.hpp>
 
 namespace ply_slam {
 
+double DelaunayConsistency::varianceAlong(const Eigen::Vector3d& p,
+                                          const Eigen::Vector3d& d) const {
+  const double z = p.z();
+  // P = (x_n Z, y_n Z, Z): dP/dZ = P / Z; dP/du = (Z / fx, 0, 0); dP/dv = (0, Z / fy, 0).
+  const double along_ray = d.dot(p / z);
+  const double px = params_.pixel_sigma * z;
+  return along_ray * along_ray * camera_.depth_noise.variance(z) +
+         std::pow(d.x() * px / camera_.fx, 2) + std::pow(d.y() * px / camera_.fy, 2);
+}
+
+Eigen::Isometry3d DelaunayConsistency::rigidMotion(
+    const std::vector<FeatureCorrespondence>& features, const std::vector<bool>& use) const {
+  const long n = std::count(use.begin(), use.end(), true);
+  Eigen::Matrix3Xd from(3, n), to(3, n);
+  long k = 0;
+  for (size_t i = 0; i < features.size(); ++i)
+    if (use[i]) {
+      from.col(k) = features[i].previous;
+      to.col(k++) = features[i].current;
+    }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  if (n >= 3) T.matrix() = Eigen::umeyama(from, to, false);
+  return T;
+}
+
+bool DelaunayConsistency::carried(const FeatureCorrespondence& f,
+                                  const Eigen::Isometry3d& motion) const {
+  const Eigen::Vector3d r = motion * f.previous - f.current;
+  const double norm = r.norm();
+  if (norm < params_.min_change) return true;
+  const Eigen::Vector3d d = r / norm;
+  // The residual's variance along itself: both measurements' noise.
+  const double variance =
+      varianceAlong(f.current, d) + varianceAlong(f.previous, motion.linear().transpose() * d);
+  return norm <= params_.sigma_factor * std::sqrt(variance);
+}
+
 bool DelaunayConsistency::inconsistent(const FeatureCorrespondence& a,
                                        const FeatureCorrespondence& b) const {
-  const double before = (a.previous - b.previous).norm();
-  const double after = (a.current - b.current).norm();
-  // The length's variance: each endpoint's depth noise, in both frames.
-  const double variance = noise_.variance(a.previous.z()) + noise_.variance(b.previous.z()) +
-                          noise_.variance(a.current.z()) + noise_.variance(b.current.z());
+  const Eigen::Vector3d edge_before = a.previous - b.previous, edge_after = a.current - b.current;
+  const double before = edge_before.norm();
+  const double after = edge_after.norm();
+  if (before < 1e-9 || after < 1e-9) return false;
+  // The length's variance: both endpoints' noise along the edge, in both frames.
+  const Eigen::Vector3d d0 = edge_before / before, d1 = edge_after / after;
+  const double variance = varianceAlong(a.previous, d0) + varianceAlong(b.previous, d0) +
+                          varianceAlong(a.current, d1) + varianceAlong(b.current, d1);
   const double allowed = std::max(params_.min_change, params_.sigma_factor * std::sqrt(variance));
   return std::abs(after - before) > allowed;
 }
@@ -35,6 +77,7 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
   }
 
   std::vector<int> edges_of(features.size(), 0), bad_of(features.size(), 0);
+  std::vector<std::vector<std::pair<size_t, bool>>> neighbours(features.size());  // (j, consistent)
   std::vector<cv::Vec4f> edges;
   subdiv.getEdgeList(edges);
   for (const auto& e : edges) {
@@ -47,9 +90,79 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
       ++edges_of[f];
       bad_of[f] += bad;
     }
+    neighbours[a->second].push_back({b->second, !bad});
+    neighbours[b->second].push_back({a->second, !bad});
   }
   for (size_t i = 0; i < features.size(); ++i)
     if (edges_of[i] > 0) weight[i] = static_cast<double>(bad_of[i]) / edges_of[i];
+
+  // A body moving as a whole keeps its inner edges: only its rim votes. So the features are
+  // grown into rigid bodies: a feature joins a body when more of its edges into the body are
+  // consistent than broken (a single edge across the motion keeps its length by chance). The
+  // static scene is the largest body; the features of a clearly smaller one get weight 1.
+  std::vector<int> body(features.size(), -1);
+  std::vector<size_t> body_size;
+  std::vector<size_t> seeds;
+  for (size_t i = 0; i < features.size(); ++i)
+    if (edges_of[i] > 0) seeds.push_back(i);
+  std::stable_sort(seeds.begin(), seeds.end(), [&](size_t x, size_t y) {
+    return edges_of[x] - bad_of[x] > edges_of[y] - bad_of[y];
+  });
+  for (size_t seed : seeds) {
+    if (body[seed] >= 0) continue;
+    const int id = static_cast<int>(body_size.size());
+    body[seed] = id;
+    size_t size = 1;
+    std::vector<size_t> candidates;
+    for (const auto& [j, ok] : neighbours[seed])
+      if (ok) candidates.push_back(j);
+    while (!candidates.empty()) {
+      const size_t c = candidates.back();
+      candidates.pop_back();
+      if (body[c] >= 0) continue;
+      int consistent = 0, broken = 0;
+      for (const auto& [j, ok] : neighbours[c])
+        if (body[j] == id) ++(ok ? consistent : broken);
+      if (consistent <= broken) continue;  // looked at again when another neighbour joins
+      body[c] = id;
+      ++size;
+      for (const auto& [j, ok] : neighbours[c])
+        if (body[j] < 0) candidates.push_back(j);
+    }
+    body_size.push_back(size);
+  }
+  const size_t largest =
+      body_size.empty() ? 0 : *std::max_element(body_size.begin(), body_size.end());
+  for (size_t i = 0; i < features.size(); ++i)
+    if (body[i] >= 0 && body_size[body[i]] < params_.minority_share * largest) weight[i] = 1.0;
+
+  // Distances along one edge are blind to motion across it, and long edges in depth are
+  // noisy. The largest body fixes the camera's motion between the frames: every feature that
+  // this motion does not carry onto its current position, beyond its noise, moved.
+  if (largest < 3) return weight;
+  const int static_body =
+      static_cast<int>(std::max_element(body_size.begin(), body_size.end()) - body_size.begin());
+  std::vector<bool> inlier(features.size());
+  for (size_t i = 0; i < features.size(); ++i) inlier[i] = body[i] == static_body;
+  for (int round = 0; round < 2; ++round) {
+    const Eigen::Isometry3d motion = rigidMotion(features, inlier);
+    for (size_t i = 0; i < features.size(); ++i) inlier[i] = carried(features[i], motion);
+  }
+  // Now the moved end of a broken edge is known: the edge blames it alone.
+  for (size_t i = 0; i < features.size(); ++i) {
+    if (edges_of[i] == 0) continue;
+    if (!inlier[i]) {
+      weight[i] = 1.0;
+      continue;
+    }
+    int edges = 0, broken = 0;
+    for (const auto& [j, ok] : neighbours[i])
+      if (inlier[j]) {
+        ++edges;
+        broken += !ok;
+      }
+    weight[i] = edges > 0 ? static_cast<double>(broken) / edges : 0.0;
+  }
   return weight;
 }
 

@@ -26,6 +26,11 @@ DynamicDecision DynamicFeatureFilter::decide(const std::vector<FeatureCorrespond
         (kind == ClassMotion::kPassive && degree > params_.passive_degree))
       d.dynamic_instances.insert(id);
   }
+  // Too few matched features to judge a person or an animal by: presume it moves.
+  for (const auto& [id, kind] : motion)
+    if (kind == ClassMotion::kActive &&
+        (all.count(id) ? all.at(id) : 0) < params_.min_judged_features)
+      d.dynamic_instances.insert(id);
   for (size_t i = 0; i < features.size(); ++i)
     if (instance[i] != 0 && d.dynamic_instances.count(instance[i])) d.dynamic[i] = true;
   return d;

@@ -96,12 +96,21 @@ void FrameFeatures::correctMotion(const PinholeCamera& camera, const CameraVeloc
 
 size_t FrameFeatures::removeMasked(const cv::Mat& mask) {
   CV_Assert(mask.type() == CV_8UC1 && mask.cols == width && mask.rows == height);
-  size_t kept = 0;
-  cv::Mat kept_descriptors;
+  std::vector<bool> drop(keypoints.size());
   for (size_t i = 0; i < keypoints.size(); ++i) {
     const int u = std::clamp(cvRound(keypoints[i].pt.x), 0, width - 1);
     const int v = std::clamp(cvRound(keypoints[i].pt.y), 0, height - 1);
-    if (mask.at<uchar>(v, u)) continue;
+    drop[i] = mask.at<uchar>(v, u) != 0;
+  }
+  return removeIf(drop);
+}
+
+size_t FrameFeatures::removeIf(const std::vector<bool>& drop) {
+  CV_Assert(drop.size() == keypoints.size());
+  size_t kept = 0;
+  cv::Mat kept_descriptors;
+  for (size_t i = 0; i < keypoints.size(); ++i) {
+    if (drop[i]) continue;
     keypoints[kept] = keypoints[i];
     rectified[kept] = rectified[i];
     undistorted[kept] = undistorted[i];

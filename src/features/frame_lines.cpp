@@ -48,4 +48,22 @@ double FrameLines::reconstructionRate() const {
   return lines.empty() ? 0.0 : static_cast<double>(numLines3D()) / lines.size();
 }
 
+size_t FrameLines::removeIf(const std::vector<bool>& drop) {
+  CV_Assert(drop.size() == lines.size());
+  size_t kept = 0;
+  cv::Mat kept_descriptors;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (drop[i]) continue;
+    lines[kept] = lines[i];
+    lines3d[kept] = lines3d[i];
+    kept_descriptors.push_back(descriptors.row(static_cast<int>(i)));
+    ++kept;
+  }
+  const size_t dropped = lines.size() - kept;
+  lines.resize(kept);
+  lines3d.resize(kept);
+  descriptors = kept_descriptors;
+  return dropped;
+}
+
 }  // namespace ply_slam

@@ -10,8 +10,10 @@
 
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
+#include "ply_slam/semantic/live_segmenter.h"
+#include "ply_slam/semantic/segmentation_image.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
-#include "ply_slam/system/frame_overlays.h"
+#include "ply_slam/system/tracking_image.h"
 
 namespace ply_slam {
 namespace {
@@ -52,8 +54,10 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
 
   if (!config_.segmentation.model_path.empty()) {
-    segmenter_ = std::make_unique<YoloV8Seg>(config_.segmentation);
-    ROS_INFO_STREAM("segmentation: YOLOv8-seg " << config_.segmentation.model_path);
+    // Live mode (DESIGN.md): the network runs beside tracking on the newest frame; tracking
+    // takes its newest result carried to the current frame and never waits for it.
+    segmenter_ = std::make_unique<LiveSegmenter>(std::make_unique<YoloV8Seg>(config_.segmentation));
+    ROS_INFO_STREAM("segmentation: YOLOv8-seg " << config_.segmentation.model_path << ", live");
   } else {
     ROS_INFO("segmentation: none (config segmentation.model is empty)");
   }
@@ -232,8 +236,11 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
   }
   const RgbdImages images = decoder_.decode(rgb, depth, info.get());
   if (!system_) startSystem(info.get());
-  const std::vector<Instance> instances =
-      segmenter_ ? segmenter_->segment(images) : std::vector<Instance>{};
+  std::vector<Instance> instances;
+  if (segmenter_) {
+    segmenter_->submit(images);
+    instances = segmenter_->instancesFor(images);
+  }
   const FrameResult result = system_->process(images, instances);
   total_ms_.push_back(result.timing.total_ms);
   if (result.tracking.state == TrackingState::kOk)
@@ -265,11 +272,12 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
   std_msgs::Header image_header = rgb.header;
   if (tracking_image_pub_.getNumSubscribers() > 0)
     tracking_image_pub_.publish(
-        cv_bridge::CvImage(image_header, "bgr8", drawTrackingImage(images.rgb, result))
+        cv_bridge::CvImage(image_header, "bgr8", drawTrackingImage(images.rgb, result, instances))
             .toImageMsg());
   if (segmentation_image_pub_.getNumSubscribers() > 0)
     segmentation_image_pub_.publish(
-        cv_bridge::CvImage(image_header, "bgr8", drawSegmentationImage(images.rgb, instances))
+        cv_bridge::CvImage(image_header, "bgr8",
+                           drawSegmentationImage(images.rgb, instances, result.dynamic_instances))
             .toImageMsg());
 }
 

@@ -1,41 +1,18 @@
 #include "ply_slam/system/system.h"
 
-#include <algorithm>
 #include <cmath>
 #include <future>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "ply_slam/common/stopwatch.h"
-#include "ply_slam/semantic/dynamic_classes.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
-namespace {
-
-constexpr int kMaskDilationPx = 5;  // masks miss the blurred rim of a moving object
-
-// The dilated union of the masks of moving classes; empty when there are none.
-cv::Mat dynamicMask(const std::vector<Instance>& instances, std::set<int>& dynamic_ids) {
-  cv::Mat dynamic;
-  for (const auto& instance : instances) {
-    if (!isActiveDynamicClass(instance.class_name)) continue;
-    dynamic_ids.insert(instance.id);
-    if (dynamic.empty()) dynamic = cv::Mat::zeros(instance.mask.size(), CV_8UC1);
-    dynamic |= instance.mask;
-  }
-  if (dynamic.empty()) return dynamic;
-  cv::dilate(dynamic, dynamic,
-             cv::getStructuringElement(cv::MORPH_ELLIPSE,
-                                       cv::Size(2 * kMaskDilationPx + 1, 2 * kMaskDilationPx + 1)));
-  return dynamic;
-}
-
-}  // namespace
-
 System::System(const SystemConfig& config)
     : config_(config),
       extractor_(config.orb),
+      rejector_(config.dynamic, config.camera),
       tracker_(config_, map_, extractor_.scales()),
       mapper_(config_, map_) {
   if (config_.lines.enabled) {
@@ -91,28 +68,24 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
       return f;
     });
   }
-  Frame frame(
-      result.frame_id, images.stamp,
+  FrameFeatures features =
       FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
-                             images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0));
-  std::set<int> dynamic_ids;
-  const cv::Mat dynamic_mask = dynamicMask(instances, dynamic_ids);
-  if (!dynamic_mask.empty()) {
-    for (const auto& kp : frame.features.keypoints) {
-      const int u = std::clamp(cvRound(kp.pt.x), 0, dynamic_mask.cols - 1);
-      const int v = std::clamp(cvRound(kp.pt.y), 0, dynamic_mask.rows - 1);
-      if (dynamic_mask.at<uchar>(v, u)) result.dynamic_keypoints.push_back(kp);
-    }
-    result.dynamic_features = frame.features.removeMasked(dynamic_mask);
-  }
-  result.keypoints = frame.features.keypoints;
+                             images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0);
+  rejectDynamic(features, images.stamp, instances, result);
+  Frame frame(result.frame_id, images.stamp, std::move(features));
   result.timing.features_ms = total.elapsedMs();
-  if (lines.valid()) frame.setLines(lines.get());
+  if (lines.valid()) {
+    FrameLines frame_lines = lines.get();
+    result.dynamic_lines = frame_lines.removeIf(
+        DynamicRejector::linesTouching(frame_lines.lines, result.dynamic_mask));
+    frame.setLines(std::move(frame_lines));
+  }
 
   Stopwatch tracking;
   result.tracking = tracker_.track(frame);
   result.timing.tracking_ms = tracking.elapsedMs();
   result.timing.total_ms = total.elapsedMs();
+  markInliers(frame, result.features);
 
   // The mapping side, run in line here so that offline runs are reproducible.
   if (result.tracking.new_keyframe) {
@@ -121,12 +94,36 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
     result.timing.mapping_ms = mapping.elapsedMs();
     result.keyframe_packet = std::make_shared<const KeyFramePacket>(
         makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, instances,
-                           dynamic_ids, dynamic_mask));
+                           result.dynamic_instances, result.dynamic_mask));
   }
 
   const bool ok = result.tracking.state == TrackingState::kOk;
   if (ok) camera_trajectory_.push_back({images.stamp, result.tracking.T_cw.inverse()});
   return result;
+}
+
+void System::rejectDynamic(FrameFeatures& features, double stamp,
+                           const std::vector<Instance>& instances, FrameResult& result) {
+  DynamicRejection rejection = rejector_.decide(features, stamp, instances, tracker_.velocity());
+  rejector_.remember(features, stamp);  // all: a feature dropped now is judged again later
+  result.features.resize(features.size());
+  std::vector<bool> drop(features.size());
+  for (size_t i = 0; i < features.size(); ++i) {
+    result.features[i] = {features.keypoints[i].pt, rejection.fate[i], false};
+    drop[i] = rejection.fate[i] != FeatureFate::kKept;
+  }
+  result.dynamic_features = features.removeIf(drop);
+  result.dynamic_instances = std::move(rejection.dynamic_instances);
+  result.dynamic_mask = rejection.dynamic_mask;
+}
+
+void System::markInliers(const Frame& frame, std::vector<FeatureMark>& marks) {
+  size_t k = 0;  // index among the kept features, which the frame holds in the same order
+  for (auto& mark : marks) {
+    if (mark.fate != FeatureFate::kKept) continue;
+    mark.inlier = k < frame.map_points.size() && frame.map_points[k] && !frame.outlier[k];
+    ++k;
+  }
 }
 
 Trajectory System::keyFrameTrajectory() const {

@@ -1,28 +1,35 @@
 // Offline run of ply_slam on a TUM RGB-D folder:
 //   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
-//                [--model ONNX --input WxH] [--max-frames N] [--no-lines]
-//                [--no-lines]
+//                [--model ONNX --input WxH] [--dynamic off|geometric|semantic|full] [--live]
+//                [--save-images N] [--max-frames N] [--no-lines]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
 // trajectory.png into DIR.
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <thread>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/stopwatch.h"
+#include "ply_slam/eval/feature_classification.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/tracking_image.h"
 
 namespace fs = std::filesystem;
 using namespace ply_slam;
@@ -36,14 +43,23 @@ struct Options {
   std::string model;                      // overrides the config's segmentation.model
   int input_width = 0, input_height = 0;  // and its input size
   bool no_lines = false;                  // overrides lines.enabled of the config
+  std::string dynamic;                    // overrides dynamic.mode of the config
+  bool live = false;                      // frames at their own pace, segmentation beside
+  long save_images = 0;                   // every N frames a tracking image; 0 = none
 };
 
 [[noreturn]] void usage(const std::string& error) {
   std::cerr
       << "ply_slam_tum: " << error << "\n"
       << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
-         " [--segmenter none|masks|yolo] [--model ONNX --input WxH] [--max-frames N] [--no-lines]\n"
+         " [--segmenter none|masks|yolo] [--model ONNX --input WxH]"
+         " [--dynamic off|geometric|semantic|full] [--live] [--save-images N] [--max-frames N]"
+         " [--no-lines]\n"
          "  --no-lines: points only, whatever lines.enabled says\n"
+         "  --dynamic: how dynamic features are rejected (default: the config's dynamic.mode)\n"
+         "  --live: play the frames at their recorded rate and segment on a second thread, as\n"
+         "          the ROS node does (results then depend on timing)\n"
+         "  --save-images N: write every N-th tracking image to DIR/images\n"
          "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n"
          "  --segmenter yolo: YOLOv8-seg, model from the config's segmentation section or"
          " --model/--input\n";
@@ -61,8 +77,8 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--no-lines") {
-      o.no_lines = true;
+    if (arg == "--no-lines" || arg == "--live") {
+      (arg == "--live" ? o.live : o.no_lines) = true;
       continue;
     }
     if (i + 1 >= argc) usage("missing value after " + arg);
@@ -83,11 +99,19 @@ Options parse(int argc, char** argv) {
         usage("--input needs WxH, e.g. 320x320");
     } else if (arg == "--max-frames")
       o.max_frames = parseCount(arg, value);
+    else if (arg == "--dynamic")
+      o.dynamic = value;
+    else if (arg == "--save-images")
+      o.save_images = parseCount(arg, value);
     else
       usage("unknown option " + arg);
   }
   if (o.segmenter != "none" && o.segmenter != "masks" && o.segmenter != "yolo")
     usage("unknown segmenter '" + o.segmenter + "' (none, masks or yolo)");
+  if (!o.dynamic.empty() && o.dynamic != "off" && o.dynamic != "geometric" &&
+      o.dynamic != "semantic" && o.dynamic != "full")
+    usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
+  if (o.live && o.segmenter == "none") usage("--live needs a segmenter");
   if (o.sequence.empty() || o.config.empty() || o.out.empty())
     usage("--sequence, --config and --out are required");
   return o;
@@ -125,6 +149,7 @@ std::string jsonStats(const ErrorStats& s) {
 int run(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
+  if (!options.dynamic.empty()) config.dynamic.mode = options.dynamic;
   const TumSequence sequence(options.sequence);
   fs::create_directories(options.out);
   const fs::path out(options.out);
@@ -142,6 +167,15 @@ int run(const Options& options) {
     }
     segmenter = std::make_unique<YoloV8Seg>(yolo);
   }
+  std::unique_ptr<LiveSegmenter> live;
+  if (options.live) live = std::make_unique<LiveSegmenter>(std::move(segmenter));
+  // Where the folder has ground-truth masks of its moving objects, the dynamic rejection is
+  // scored against them.
+  std::unique_ptr<MaskFolderSegmenter> ground_truth;
+  if (fs::exists(fs::path(sequence.folder()) / "instances.txt"))
+    ground_truth = std::make_unique<MaskFolderSegmenter>(sequence.folder());
+  FeatureClassification classification;
+  if (options.save_images > 0) fs::create_directories(out / "images");
   System system(config);
   std::ofstream timing(out / "timing.csv");
   timing
@@ -156,14 +190,42 @@ int run(const Options& options) {
                        : sequence.size();
   // A frame that cannot be read ends the run, but what was tracked so far is still written.
   std::string failure;
+  const auto start = std::chrono::steady_clock::now();
+  double first_stamp = -1.0;
+  std::vector<double> segment_ms;
   for (size_t i = 0; i < n && failure.empty(); ++i) {
     FrameResult r;
+    std::vector<Instance> instances;
+    RgbdImages images;
     try {
-      const RgbdImages images = sequence.load(i, config.camera.depth_factor);
-      r = system.process(images, segmenter ? segmenter->segment(images) : std::vector<Instance>{});
+      images = sequence.load(i, config.camera.depth_factor);
+      if (live) {
+        // A camera delivers the frame at its stamp: wait for it, never for the network.
+        if (first_stamp < 0) first_stamp = images.stamp;
+        std::this_thread::sleep_until(start +
+                                      std::chrono::duration<double>(images.stamp - first_stamp));
+        live->submit(images);
+        instances = live->instancesFor(images);
+      } else if (segmenter) {
+        Stopwatch watch;
+        instances = segmenter->segment(images);
+        segment_ms.push_back(watch.elapsedMs());
+      }
+      r = system.process(images, instances);
+      if (ground_truth) {
+        cv::Mat moving;
+        for (const auto& instance : ground_truth->segment(images))
+          moving = moving.empty() ? instance.mask.clone() : (moving | instance.mask);
+        classification.add(r.features, moving);
+      }
     } catch (const std::exception& e) {
       failure = e.what();
       break;
+    }
+    if (options.save_images > 0 && i % options.save_images == 0) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "%06ld.jpg", r.frame_id);
+      cv::imwrite((out / "images" / name).string(), drawTrackingImage(images.rgb, r, instances));
     }
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
@@ -189,8 +251,20 @@ int run(const Options& options) {
        << ",\n  \"lost\": " << lost << ",\n  \"keyframes\": " << system.map().numKeyFrames()
        << ",\n  \"map_points\": " << system.map().numMapPoints() << ",\n"
        << "  \"segmenter\": \"" << options.segmenter << "\",\n"
+       << "  \"dynamic_mode\": \"" << config.dynamic.mode << "\",\n"
        << "  \"dynamic_features_dropped\": " << dynamic_features << ",\n"
-       << "  \"lines\": {\"enabled\": " << (config.lines.enabled ? "true" : "false")
+       << "  \"segmentation_ms_median\": " << percentile(segment_ms, 0.5) << ",\n";
+  if (live)
+    json << "  \"live\": {\"segmented_frames\": " << live->segmentedFrames()
+         << ", \"mask_age_mean_s\": " << live->meanAgeSeconds() << "},\n";
+  if (ground_truth)
+    json << "  \"feature_classification\": {\"walker_features\": "
+         << classification.walkerFeatures()
+         << ", \"walker_kept_share\": " << classification.walkerKeptShare()
+         << ", \"walker_inlier_share\": " << classification.walkerInlierShare()
+         << ", \"static_features\": " << classification.staticFeatures()
+         << ", \"static_dropped_share\": " << classification.staticDroppedShare() << "},\n";
+  json << "  \"lines\": {\"enabled\": " << (config.lines.enabled ? "true" : "false")
        << ", \"balance\": \"" << config.lines.balance
        << "\", \"map_lines\": " << system.map().numMapLines()
        << ", \"line_inliers_mean\": " << (frames > 0 ? line_inliers / frames : 0.0)

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
 
@@ -81,6 +82,45 @@ struct YoloParams {
   float mask_threshold = 0.5f;    // sigmoid mask probability that counts as inside
 };
 
+// The Delaunay topology check (dynamic module, PAPER.md §3.2).
+struct DelaunayConsistencyParams {
+  double sigma_factor = 3.0;  // an edge is inconsistent when its length changes > k sigma
+  double min_change = 0.01;   // m; and by at least this much (unmodelled errors)
+  double pixel_sigma = 1.0;   // px; image noise of a feature, beside the depth noise
+  // Features joined by consistent edges form rigid bodies; those of a body smaller than this
+  // share of the largest (the static scene) get weight 1.
+  double minority_share = 0.5;
+};
+
+// Label dynamic degree and the rejection rules (PAPER.md §3.2).
+struct DynamicFilterParams {
+  DelaunayConsistencyParams consistency;
+  double weight_threshold = 0.5;  // w_th: a feature with a larger dynamic weight is in DP
+  double active_degree = 0.2;     // Th_min: r_d above which an active-class instance is dynamic
+  double passive_degree = 0.5;    // Th_max: the stricter bound for passive classes
+  int min_judged_features = 5;    // an active instance with fewer matched features is dynamic
+};
+
+// Dynamic-feature rejection (dynamic module).
+struct DynamicParams {
+  // off: use every feature; geometric: the Delaunay check alone; semantic: drop instances of
+  // active classes whole, no geometry; full: the paper's fusion of both.
+  std::string mode = "full";
+  DynamicFilterParams filter;
+  int mask_dilation_px = 5;  // dynamic masks miss the blurred rim of a moving object
+  // Frames back to the frame the Delaunay check compares with: a person walking at 1 m/s moves
+  // 3 cm between two 30 Hz frames, within the depth noise at 3 m; over 0.1 s it moves 10 cm.
+  int baseline_frames = 3;
+  double match_radius_px = 30.0;  // previous -> current feature search around the prediction
+  int max_descriptor_distance = 50;
+  std::vector<std::string> active_classes = {
+      "person", "bicycle", "car",   "motorcycle", "bus", "train",    "truck", "boat",  "bird",
+      "cat",    "dog",     "horse", "sheep",      "cow", "elephant", "bear",  "zebra", "giraffe"};
+  std::vector<std::string> passive_classes = {"chair",      "backpack",    "handbag",   "suitcase",
+                                              "umbrella",   "bottle",      "cup",       "book",
+                                              "cell phone", "sports ball", "teddy bear"};
+};
+
 struct SystemConfig {
   std::string source_path;  // the file it was loaded from
   PinholeCamera camera;
@@ -88,6 +128,7 @@ struct SystemConfig {
   LineParams lines;
   TrackingParams tracking;
   YoloParams segmentation;
+  DynamicParams dynamic;
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and

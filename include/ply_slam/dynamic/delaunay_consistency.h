@@ -1,9 +1,9 @@
 #pragma once
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
-#include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/common/config.h"
 
 namespace ply_slam {
 
@@ -15,19 +15,19 @@ struct FeatureCorrespondence {
   Eigen::Vector3d current;   // current camera frame (m)
 };
 
-struct DelaunayConsistencyParams {
-  double sigma_factor = 3.0;  // an edge is inconsistent when its length changes > k sigma
-  double min_change = 0.02;   // m; and by at least this much (unmodelled errors)
-};
-
 // The Delaunay topology check of PAPER.md §3.2: a triangle network over the matched features
 // in the current image; each edge compares the 3D distance between its two features in the
 // previous and the current frame, which a rigid static scene keeps. The dynamic weight of a
-// feature is the share of its edges that changed more than the depth noise allows.
+// feature is the share of its edges that changed more than the noise allows: the endpoints'
+// covariances (depth noise sigma_Z^2 along the ray, pixel noise across it, as in §3.1)
+// projected on the edge. Beyond the paper: features joined by consistent edges form rigid
+// bodies, and a body clearly smaller than the largest (the static scene) moved as a whole —
+// its inner edges never break, so the per-edge vote alone sees only its rim; and the camera
+// motion fitted to the largest body must carry each feature onto its current position.
 class DelaunayConsistency {
  public:
-  DelaunayConsistency(const DepthNoiseModel& noise, const DelaunayConsistencyParams& params)
-      : noise_(noise), params_(params) {}
+  DelaunayConsistency(const PinholeCamera& camera, const DelaunayConsistencyParams& params)
+      : camera_(camera), params_(params) {}
 
   // Weight in [0, 1] per correspondence (0 for features without edges).
   std::vector<double> weights(const std::vector<FeatureCorrespondence>& features, int width,
@@ -36,7 +36,16 @@ class DelaunayConsistency {
  private:
   bool inconsistent(const FeatureCorrespondence& a, const FeatureCorrespondence& b) const;
 
-  DepthNoiseModel noise_;
+  // Variance of a back-projected point along unit direction d: depth noise along its ray,
+  // pixel noise across it.
+  double varianceAlong(const Eigen::Vector3d& p, const Eigen::Vector3d& d) const;
+  // Least-squares rigid motion previous -> current of the features flagged in `use`.
+  Eigen::Isometry3d rigidMotion(const std::vector<FeatureCorrespondence>& features,
+                                const std::vector<bool>& use) const;
+  // Whether `motion` carries the feature's previous position onto its current one.
+  bool carried(const FeatureCorrespondence& f, const Eigen::Isometry3d& motion) const;
+
+  PinholeCamera camera_;
   DelaunayConsistencyParams params_;
 };
 

@@ -9,13 +9,6 @@
 
 namespace ply_slam {
 
-struct DynamicFilterParams {
-  DelaunayConsistencyParams consistency;
-  double weight_threshold = 0.5;  // w_th: a feature with a larger dynamic weight is in DP
-  double active_degree = 0.2;     // Th_min: r_d above which an active-class instance is dynamic
-  double passive_degree = 0.5;    // Th_max: the stricter bound for passive classes
-};
-
 // Which instance class kind moves (PAPER.md §3.2).
 enum class ClassMotion { kStatic, kPassive, kActive };
 
@@ -29,12 +22,14 @@ struct DynamicDecision {
 // Fuses the geometric evidence with instance labels: features whose Delaunay weight exceeds
 // w_th form DP; each instance's dynamic degree r_d is its share of features in DP; an active
 // instance (people, animals, vehicles) with r_d > Th_min, or a passive one (chairs, bags…)
-// with r_d > Th_max, is dynamic as a whole. Static classes are never dropped as a whole.
+// with r_d > Th_max, is dynamic as a whole; so is an active instance with fewer than
+// min_judged_features matched features (it cannot be judged). Static classes are never
+// dropped as a whole.
 // Features in DP are dropped wherever they are, labelled or not.
 class DynamicFeatureFilter {
  public:
-  DynamicFeatureFilter(const DepthNoiseModel& noise, const DynamicFilterParams& params)
-      : consistency_(noise, params.consistency), params_(params) {}
+  DynamicFeatureFilter(const PinholeCamera& camera, const DynamicFilterParams& params)
+      : consistency_(camera, params.consistency), params_(params) {}
 
   // instance[i]: the instance id under feature i, or 0; motion: class kind per instance id.
   DynamicDecision decide(const std::vector<FeatureCorrespondence>& features,

@@ -39,6 +39,8 @@ struct FrameFeatures {
   // Drops the features whose raw keypoint lies on a non-zero pixel of `mask` (CV_8UC1, image
   // size). Returns how many were dropped.
   size_t removeMasked(const cv::Mat& mask);
+  // Drops feature i where drop[i] (one flag per feature). Returns how many were dropped.
+  size_t removeIf(const std::vector<bool>& drop);
 
   size_t size() const { return keypoints.size(); }
   int level(size_t i) const { return keypoints[i].octave; }

@@ -39,6 +39,8 @@ struct FrameLines {
   void fit(const cv::Mat& depth_m, const LineFitter& fitter, LineFitMethod method);
 
   size_t size() const { return lines.size(); }
+  // Drops segment i where drop[i] (one flag per segment). Returns how many were dropped.
+  size_t removeIf(const std::vector<bool>& drop);
   cv::Mat descriptor(size_t i) const { return descriptors.row(static_cast<int>(i)); }
   bool hasLine3D(size_t i) const { return lines3d[i].valid; }
   size_t numLines3D() const;

@@ -18,7 +18,7 @@
 
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
-#include "ply_slam/semantic/segmenter.h"
+#include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/system/system.h"
 
 namespace ply_slam {
@@ -62,7 +62,7 @@ class TrackingNode {
   size_t frame_queue_size_ = 100;
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
-  std::unique_ptr<Segmenter> segmenter_;
+  std::unique_ptr<LiveSegmenter> segmenter_;  // null: no model configured
   RgbdMessageDecoder decoder_;
   BadInputLog bad_input_;
 

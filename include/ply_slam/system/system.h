@@ -1,10 +1,12 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <stdexcept>
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/dynamic/dynamic_rejector.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -27,15 +29,23 @@ struct FrameTiming {
   double mapping_ms = 0.0;   // local bundle adjustment after a new keyframe (mapping side)
 };
 
+// One extracted point feature and what became of it (for the tracking image and reports).
+struct FeatureMark {
+  cv::Point2f pixel;  // raw image
+  FeatureFate fate = FeatureFate::kKept;
+  bool inlier = false;  // kept, matched to a landmark and an inlier of the pose optimisation
+};
+
 struct FrameResult {
   long frame_id = 0;
   double stamp = 0.0;
   TrackingResult tracking;
   FrameTiming timing;
   size_t dynamic_features = 0;  // dropped because they lay on a moving object
-  // For display (tracking image): the keypoints used and those dropped as dynamic, raw pixels.
-  std::vector<cv::KeyPoint> keypoints;
-  std::vector<cv::KeyPoint> dynamic_keypoints;
+  size_t dynamic_lines = 0;     // lines dropped: an endpoint on a dynamic instance
+  std::vector<FeatureMark> features;
+  std::set<int> dynamic_instances;  // ids of the instances judged moving
+  cv::Mat dynamic_mask;             // their dilated union (8UC1), empty when none
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
 };
@@ -53,7 +63,7 @@ class System {
   explicit System(const SystemConfig& config);
 
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
-  // Features on instances of moving classes (people, animals, vehicles) are not used.
+  // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
   FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
 
   // Corrections from the mapping side (mapping_node's ~map_update): keyframe poses, landmark
@@ -67,11 +77,16 @@ class System {
 
  private:
   void validate(const RgbdImages& images) const;
+  // Judges the frame's features (PAPER.md §3.2), drops the dynamic ones, records the fates.
+  void rejectDynamic(FrameFeatures& features, double stamp, const std::vector<Instance>& instances,
+                     FrameResult& result);
+  static void markInliers(const Frame& frame, std::vector<FeatureMark>& marks);
 
   SystemConfig config_;
   OrbExtractor extractor_;
   std::unique_ptr<LineExtractor> line_extractor_;  // null when lines are disabled
   std::unique_ptr<LineFitter> line_fitter_;
+  DynamicRejector rejector_;
   Map map_;
   Tracker tracker_;
   Mapper mapper_;

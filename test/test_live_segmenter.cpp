@@ -1,0 +1,144 @@
+// Live-mode segmentation: masks carried to later frames, the worker never holding up the
+// caller and always segmenting the newest frame.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <opencv2/imgproc.hpp>
+#include <thread>
+
+#include "ply_slam/semantic/live_segmenter.h"
+#include "ply_slam/semantic/mask_carrier.h"
+
+using namespace ply_slam;
+
+namespace {
+
+// Noise at several scales, like a natural image: structure for every pyramid level.
+cv::Mat texture(int seed) {
+  cv::RNG rng(seed);
+  cv::Mat sum = cv::Mat::zeros(480, 640, CV_32FC1);
+  for (double sigma : {1.5, 4.0, 10.0}) {
+    cv::Mat noise(480, 640, CV_32FC1);
+    rng.fill(noise, cv::RNG::UNIFORM, 0.0, 1.0);
+    cv::GaussianBlur(noise, noise, cv::Size(0, 0), sigma);
+    cv::normalize(noise, noise, 0, 1, cv::NORM_MINMAX);
+    sum += noise;
+  }
+  cv::Mat image;
+  cv::normalize(sum, sum, 0, 255, cv::NORM_MINMAX);
+  sum.convertTo(image, CV_8UC1);
+  return image;
+}
+
+cv::Mat shifted(const cv::Mat& image, double dx, double dy) {
+  cv::Mat out;
+  cv::warpAffine(image, out, cv::Matx23d(1, 0, dx, 0, 1, dy), image.size(), cv::INTER_LINEAR,
+                 cv::BORDER_REFLECT);
+  return out;
+}
+
+double share(const cv::Mat& covered, const cv::Mat& by) {
+  return static_cast<double>(cv::countNonZero(covered & by)) / cv::countNonZero(covered);
+}
+
+// An object (its own texture) moving over a background that moves differently.
+struct MovingObject {
+  cv::Mat from, to, mask_from, mask_to;
+};
+
+MovingObject movingObject(double obj_dx, double obj_dy, double bg_dx) {
+  const cv::Mat background = texture(1), object = texture(2);
+  MovingObject m;
+  m.mask_from = cv::Mat::zeros(480, 640, CV_8UC1);
+  cv::ellipse(m.mask_from, {300, 240}, {60, 120}, 0, 0, 360, 255, cv::FILLED);
+  m.mask_to = shifted(m.mask_from, obj_dx, obj_dy) > 127;
+  m.from = background.clone();
+  object.copyTo(m.from, m.mask_from);
+  m.to = shifted(background, bg_dx, 0);
+  shifted(object, obj_dx, obj_dy).copyTo(m.to, m.mask_to);
+  return m;
+}
+
+class SlowSegmenter : public Segmenter {
+ public:
+  std::vector<Instance> segment(const RgbdImages& images) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    if (images.stamp < 0) throw std::runtime_error("negative stamp");
+    cv::Mat mask = cv::Mat::zeros(images.rgb.size(), CV_8UC1);
+    cv::rectangle(mask, cv::Rect(100, 100, 50, 80), 255, cv::FILLED);
+    return {{1, "person", 0.9f, mask}};
+  }
+  std::string name() const override { return "slow"; }
+};
+
+RgbdImages frame(double stamp) {
+  RgbdImages images;
+  images.stamp = stamp;
+  cv::cvtColor(texture(3), images.rgb, cv::COLOR_GRAY2BGR);
+  images.depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.0f));
+  return images;
+}
+
+bool waitFor(const LiveSegmenter& live, long frames) {
+  for (int i = 0; i < 500 && live.segmentedFrames() < frames; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  return live.segmentedFrames() >= frames;
+}
+
+}  // namespace
+
+TEST(MaskCarrier, FollowsAnObjectThatMovesAgainstTheBackground) {
+  const MovingObject m = movingObject(18, -9, -6);
+  const Instance instance{1, "person", 1.0f, m.mask_from};
+  const auto carried = MaskCarrier().carry({instance}, m.from, m.to);
+  ASSERT_EQ(carried.size(), 1u);
+  EXPECT_EQ(carried[0].class_name, "person");
+  // The carried mask covers the object where it is now, and not much more.
+  EXPECT_GT(share(m.mask_to, carried[0].mask), 0.98);
+  EXPECT_LT(cv::countNonZero(carried[0].mask), 1.25 * cv::countNonZero(m.mask_to));
+  // The stale mask would not have.
+  EXPECT_LT(share(m.mask_to, m.mask_from), 0.85);
+}
+
+TEST(MaskCarrier, RejectsImagesOfDifferentSizes) {
+  const cv::Mat small(240, 320, CV_8UC1, cv::Scalar(0));
+  EXPECT_THROW(MaskCarrier().carry({}, texture(1), small), std::invalid_argument);
+}
+
+TEST(LiveSegmenter, NothingBeforeTheFirstResultThenTheNewestFrame) {
+  LiveSegmenter live(std::make_unique<SlowSegmenter>());
+  EXPECT_TRUE(live.instancesFor(frame(0.0)).empty());
+  // Frames arrive faster than the segmenter runs: it skips to the newest.
+  for (int i = 1; i <= 6; ++i) {
+    live.submit(frame(i * 0.033));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(waitFor(live, 1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let it reach the last one
+  EXPECT_LT(live.segmentedFrames(), 6);
+  const auto instances = live.instancesFor(frame(6 * 0.033));
+  ASSERT_EQ(instances.size(), 1u);
+  // Same stamp as the segmented frame: the mask comes unchanged (not carried, not dilated).
+  EXPECT_EQ(cv::countNonZero(instances[0].mask), 50 * 80);
+  EXPECT_NEAR(live.meanAgeSeconds(), 0.0, 1e-9);
+  // A later frame gets the mask carried, and the age is counted.
+  EXPECT_EQ(live.instancesFor(frame(7 * 0.033)).size(), 1u);
+  EXPECT_NEAR(live.meanAgeSeconds(), 0.033 / 2, 1e-6);
+}
+
+TEST(LiveSegmenter, AFrameTheSegmenterRejectsKeepsThePreviousResult) {
+  LiveSegmenter live(std::make_unique<SlowSegmenter>());
+  live.submit(frame(1.0));
+  ASSERT_TRUE(waitFor(live, 1));
+  live.submit(frame(-1.0));
+  for (int i = 0; i < 200 && live.lastError().empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(live.lastError(), "negative stamp");
+  EXPECT_EQ(live.segmentedFrames(), 1);
+  EXPECT_EQ(live.instancesFor(frame(1.0)).size(), 1u);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
