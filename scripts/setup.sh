@@ -36,10 +36,18 @@ ply_slam_install_packages() {
 }
 
 ply_slam_build() {
-  mkdir -p "${PLY_SLAM_WS}/src"
-  ln -sfn "${PLY_SLAM_ROOT}" "${PLY_SLAM_WS}/src/ply_slam"
+  # The source space is the hidden folder .src: roslaunch, rosrun and rostest search a
+  # package's whole tree (following links, skipping dot-folders) and would otherwise follow
+  # build/ws/src/ply_slam back into this repository for ever.
+  if [ -L "${PLY_SLAM_WS}/src/ply_slam" ]; then  # a workspace made before: move it over
+    rm -f "${PLY_SLAM_WS}/src/ply_slam"
+    rmdir "${PLY_SLAM_WS}/src" 2>/dev/null || true
+    rm -rf "${PLY_SLAM_WS}/build"
+  fi
+  mkdir -p "${PLY_SLAM_WS}/.src"
+  ln -sfn "${PLY_SLAM_ROOT}" "${PLY_SLAM_WS}/.src/ply_slam"
   (cd "${PLY_SLAM_WS}" &&
-     catkin_make -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" \
+     catkin_make --source .src -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" \
        >"${PLY_SLAM_WS}/build.log" 2>&1) || {
     tail -n 60 "${PLY_SLAM_WS}/build.log"
     echo "[setup] build failed; full log: ${PLY_SLAM_WS}/build.log" >&2
