@@ -40,7 +40,7 @@ ply_slam_build() {
   # package's whole tree (following links, skipping dot-folders) and would otherwise follow
   # build/ws/src/ply_slam back into this repository for ever.
   if [ -L "${PLY_SLAM_WS}/src/ply_slam" ]; then  # a workspace made before: move it over
-    rm -f "${PLY_SLAM_WS}/src/ply_slam"
+    rm -f "${PLY_SLAM_WS}/src/ply_slam" "${PLY_SLAM_WS}/src/CMakeLists.txt"
     rmdir "${PLY_SLAM_WS}/src" 2>/dev/null || true
     rm -rf "${PLY_SLAM_WS}/build"
   fi

@@ -188,7 +188,7 @@ void TrackingNode::work() {
     {
       std::unique_lock<std::mutex> lock(queue_mutex_);
       queue_cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping and nothing left
+      if (stopping_) return;  // shutting down: frames still waiting are not tracked
       job = std::move(queue_.front());
       queue_.pop_front();
     }

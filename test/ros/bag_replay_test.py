@@ -4,6 +4,7 @@ at rate 1 into the running tracking_node + mapping_node, saves the trajectory th
 mapper's service and checks: every frame synchronised and tracked, ATE within the allowed factor
 of the offline ply_slam_tum run on the same frames."""
 import os
+import shutil
 import subprocess
 import sys
 import unittest
@@ -20,6 +21,7 @@ class BagReplay(unittest.TestCase):
         d435i = rospy.get_param("~d435i", False)
         factor = rospy.get_param("~ate_factor", 1.5)
         work = support.work_dir()
+        self.addCleanup(shutil.rmtree, work, True)  # bags are tens of MB
         bag = os.path.join(work, "sequence.bag")
         support.tum_to_bag(sequence, bag, d435i)
         offline_frames, offline_ate = support.offline_run(sequence, os.path.join(work, "offline"))

@@ -4,6 +4,7 @@ messages between the good ones (wrong encodings, sizes that disagree with camera
 images, truncated data, stamps going backwards). The nodes must skip the bad ones, say why,
 and keep tracking every good frame as accurately as the offline run."""
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -57,6 +58,7 @@ class MalformedInput(unittest.TestCase):
     def test_nodes_survive_and_keep_tracking(self):
         sequence = support.shared_path(rospy.get_param("~sequence"))
         work = support.work_dir()
+        self.addCleanup(shutil.rmtree, work, True)  # bags are tens of MB
         bag_path = os.path.join(work, "sequence.bag")
         support.tum_to_bag(sequence, bag_path)
         offline_frames, offline_ate = support.offline_run(sequence, os.path.join(work, "offline"))

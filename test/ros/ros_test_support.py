@@ -3,6 +3,7 @@ runs, bag conversion, the tracking node's statistics and the mapper's save servi
 import json
 import os
 import subprocess
+import sys
 import tempfile
 import time
 import unittest
@@ -89,8 +90,20 @@ class StatsListener:
         return condition(self)
 
 
-def save_trajectory(path):
+def import_service_type():
+    """ply_slam.srv.SaveToPath. catkin caches the environment of a fresh workspace before the
+    generated Python messages exist, so under ctest PYTHONPATH can lack them: add the devel
+    space's dist-packages, found beside our executables."""
+    devel = os.path.dirname(os.path.dirname(os.path.dirname(tool("ply_slam_tum"))))
+    packages = os.path.join(devel, "lib", "python3", "dist-packages")
+    if os.path.isdir(packages) and packages not in sys.path:
+        sys.path.insert(0, packages)
     from ply_slam.srv import SaveToPath
+    return SaveToPath
+
+
+def save_trajectory(path):
+    SaveToPath = import_service_type()
     rospy.wait_for_service(SAVE_TRAJECTORY, timeout=30)
     response = rospy.ServiceProxy(SAVE_TRAJECTORY, SaveToPath)(path)
     if not response.success:
