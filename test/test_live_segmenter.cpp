@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
+#include "ply_slam/semantic/instance_memory.h"
 #include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/semantic/mask_carrier.h"
 
@@ -103,6 +104,31 @@ TEST(MaskCarrier, FollowsAnObjectThatMovesAgainstTheBackground) {
 TEST(MaskCarrier, RejectsImagesOfDifferentSizes) {
   const cv::Mat small(240, 320, CV_8UC1, cv::Scalar(0));
   EXPECT_THROW(MaskCarrier().carry({}, texture(1), small), std::invalid_argument);
+}
+
+TEST(InstanceMemory, CarriesAMissedPersonOnForAFewFrames) {
+  const MovingObject m = movingObject(10, 4, -3);
+  const Instance person{7, "person", 0.9f, m.mask_from};
+  InstanceMemory memory(2);
+  auto judged = memory.complete({person}, m.from);
+  ASSERT_EQ(judged.size(), 1u);
+  memory.remember(judged, {7}, m.from);
+  // Seen again: nothing is added.
+  EXPECT_EQ(memory.complete({{3, "person", 0.8f, m.mask_to}}, m.to).size(), 1u);
+  // Missed: the remembered mask comes along, moved with the object, as a new instance.
+  judged = memory.complete({}, m.to);
+  ASSERT_EQ(judged.size(), 1u);
+  EXPECT_EQ(judged[0].class_name, "person");
+  EXPECT_NE(judged[0].id, 7);
+  EXPECT_GT(share(m.mask_to, judged[0].mask), 0.98);
+  // Carried for at most 2 frames, and only while it is judged dynamic.
+  memory.remember(judged, {judged[0].id}, m.to);
+  judged = memory.complete({}, m.to);
+  ASSERT_EQ(judged.size(), 1u);
+  memory.remember(judged, {judged[0].id}, m.to);
+  EXPECT_TRUE(memory.complete({}, m.to).empty());
+  memory.remember({person}, {}, m.from);  // a person judged static is not remembered
+  EXPECT_TRUE(memory.complete({}, m.to).empty());
 }
 
 TEST(LiveSegmenter, NothingBeforeTheFirstResultThenTheNewestFrame) {

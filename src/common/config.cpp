@@ -219,6 +219,8 @@ void readDynamic(Section s, DynamicParams& d) {
   s.read("baseline_frames", d.baseline_frames);
   if (d.baseline_frames < 1 || d.baseline_frames > 30)
     s.fail("baseline_frames", "must be in [1, 30]");
+  s.read("carry_frames", d.carry_frames);
+  if (d.carry_frames < 0 || d.carry_frames > 30) s.fail("carry_frames", "must be in [0, 30]");
   s.readPositive("match_radius_px", d.match_radius_px);
   s.readPositive("max_descriptor_distance", d.max_descriptor_distance);
   s.read("active_classes", d.active_classes);
@@ -227,6 +229,27 @@ void readDynamic(Section s, DynamicParams& d) {
     if (std::find(d.passive_classes.begin(), d.passive_classes.end(), name) !=
         d.passive_classes.end())
       s.fail("passive_classes", "'" + name + "' is also an active class");
+  s.rejectUnknownKeys();
+}
+
+void readDense(Section s, DenseParams& d) {
+  s.read("enabled", d.enabled);
+  s.readPositive("stride", d.stride);
+  s.readPositive("min_depth", d.min_depth);
+  s.readPositive("max_depth", d.max_depth);
+  if (d.max_depth <= d.min_depth) s.fail("max_depth", "must be > min_depth");
+  s.readPositive("voxel_size", d.voxel_size);
+  s.read("dilation_px", d.dilation_px);
+  if (d.dilation_px < 0 || d.dilation_px > 50) s.fail("dilation_px", "must be within [0, 50]");
+  s.readPositive("octree_resolution", d.octree_resolution);
+  s.read("octree_occupancy", d.octree_occupancy);
+  if (!(d.octree_occupancy >= 0.5 && d.octree_occupancy < 0.97))
+    s.fail("octree_occupancy", "must be within [0.5, 0.97)");
+  s.read("octree_filter", d.octree_filter);
+  s.read("colour_mode", d.colour_mode);
+  if (d.colour_mode != "class" && d.colour_mode != "rgb")
+    s.fail("colour_mode", "must be class or rgb");
+  s.read("palette", d.palette);
   s.rejectUnknownKeys();
 }
 
@@ -244,6 +267,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   readSegmentation(top.child("segmentation"), config.segmentation);
   readTracking(top.child("tracking"), config.tracking);
   readDynamic(top.child("dynamic"), config.dynamic);
+  readDense(top.child("dense"), config.dense);
   top.rejectUnknownKeys();
   return config;
 }

@@ -33,30 +33,40 @@ Eigen::Isometry3d DelaunayConsistency::rigidMotion(
   return T;
 }
 
-bool DelaunayConsistency::carried(const FeatureCorrespondence& f,
-                                  const Eigen::Isometry3d& motion) const {
+DelaunayConsistency::Change DelaunayConsistency::residual(const FeatureCorrespondence& f,
+                                                          const Eigen::Isometry3d& motion) const {
   const Eigen::Vector3d r = motion * f.previous - f.current;
   const double norm = r.norm();
-  if (norm < params_.min_change) return true;
+  if (norm < 1e-12) return {0.0, 0.0};
   const Eigen::Vector3d d = r / norm;
   // The residual's variance along itself: both measurements' noise.
   const double variance =
       varianceAlong(f.current, d) + varianceAlong(f.previous, motion.linear().transpose() * d);
-  return norm <= params_.sigma_factor * std::sqrt(variance);
+  return {norm, norm / std::sqrt(variance)};
 }
 
-bool DelaunayConsistency::inconsistent(const FeatureCorrespondence& a,
-                                       const FeatureCorrespondence& b) const {
+DelaunayConsistency::Change DelaunayConsistency::edgeChange(const FeatureCorrespondence& a,
+                                                            const FeatureCorrespondence& b) const {
   const Eigen::Vector3d edge_before = a.previous - b.previous, edge_after = a.current - b.current;
   const double before = edge_before.norm();
   const double after = edge_after.norm();
-  if (before < 1e-9 || after < 1e-9) return false;
+  if (before < 1e-9 || after < 1e-9) return {0.0, 0.0};
   // The length's variance: both endpoints' noise along the edge, in both frames.
   const Eigen::Vector3d d0 = edge_before / before, d1 = edge_after / after;
   const double variance = varianceAlong(a.previous, d0) + varianceAlong(b.previous, d0) +
                           varianceAlong(a.current, d1) + varianceAlong(b.current, d1);
-  const double allowed = std::max(params_.min_change, params_.sigma_factor * std::sqrt(variance));
-  return std::abs(after - before) > allowed;
+  return {std::abs(after - before), std::abs(after - before) / std::sqrt(variance)};
+}
+
+bool DelaunayConsistency::exceeds(const Change& change, double scale) const {
+  return change.metres > params_.min_change && change.sigmas > params_.sigma_factor * scale;
+}
+
+double DelaunayConsistency::noiseScale(std::vector<double> sigmas, double median_of_unit) {
+  if (sigmas.empty()) return 1.0;
+  const auto mid = sigmas.begin() + sigmas.size() / 2;
+  std::nth_element(sigmas.begin(), mid, sigmas.end());
+  return std::max(1.0, *mid / median_of_unit);
 }
 
 std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorrespondence>& features,
@@ -78,20 +88,32 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
 
   std::vector<int> edges_of(features.size(), 0), bad_of(features.size(), 0);
   std::vector<std::vector<std::pair<size_t, bool>>> neighbours(features.size());  // (j, consistent)
-  std::vector<cv::Vec4f> edges;
-  subdiv.getEdgeList(edges);
-  for (const auto& e : edges) {
-    // Edges to the outer virtual vertices find no feature and are skipped.
+  std::vector<cv::Vec4f> edge_list;
+  subdiv.getEdgeList(edge_list);
+  // Edges to the outer virtual vertices find no feature and are skipped.
+  std::vector<std::pair<size_t, size_t>> edges;
+  std::vector<Change> changes;
+  std::vector<double> sigmas;
+  for (const auto& e : edge_list) {
     const auto a = at.find({e[0], e[1]}), b = at.find({e[2], e[3]});
     if (a == at.end() || b == at.end()) continue;
+    edges.push_back({a->second, b->second});
+    changes.push_back(edgeChange(features[a->second], features[b->second]));
+    sigmas.push_back(changes.back().sigmas);
+  }
+  // Most edges are static: where they change more than the model says (motion blur, rolling
+  // shutter, matching at speed), the model's noise is scaled up to theirs.
+  const double edge_scale = noiseScale(sigmas, 0.6745);  // median |N(0, 1)|
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const auto [ia, ib] = edges[k];
     // A broken edge says one of its ends moved, not which: both get the vote.
-    const bool bad = inconsistent(features[a->second], features[b->second]);
-    for (size_t f : {a->second, b->second}) {
+    const bool bad = exceeds(changes[k], edge_scale);
+    for (size_t f : {ia, ib}) {
       ++edges_of[f];
       bad_of[f] += bad;
     }
-    neighbours[a->second].push_back({b->second, !bad});
-    neighbours[b->second].push_back({a->second, !bad});
+    neighbours[ia].push_back({ib, !bad});
+    neighbours[ib].push_back({ia, !bad});
   }
   for (size_t i = 0; i < features.size(); ++i)
     if (edges_of[i] > 0) weight[i] = static_cast<double>(bad_of[i]) / edges_of[i];
@@ -146,7 +168,14 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
   for (size_t i = 0; i < features.size(); ++i) inlier[i] = body[i] == static_body;
   for (int round = 0; round < 2; ++round) {
     const Eigen::Isometry3d motion = rigidMotion(features, inlier);
-    for (size_t i = 0; i < features.size(); ++i) inlier[i] = carried(features[i], motion);
+    std::vector<Change> residuals;
+    std::vector<double> static_sigmas;
+    for (size_t i = 0; i < features.size(); ++i) {
+      residuals.push_back(residual(features[i], motion));
+      if (inlier[i]) static_sigmas.push_back(residuals.back().sigmas);
+    }
+    const double scale = noiseScale(static_sigmas, 1.5382);  // median of a 3-DoF chi
+    for (size_t i = 0; i < features.size(); ++i) inlier[i] = !exceeds(residuals[i], scale);
   }
   // Now the moved end of a broken edge is known: the edge blames it alone.
   for (size_t i = 0; i < features.size(); ++i) {

@@ -48,6 +48,31 @@ double FrameLines::reconstructionRate() const {
   return lines.empty() ? 0.0 : static_cast<double>(numLines3D()) / lines.size();
 }
 
+void FrameLines::correctMotion(const PinholeCamera& camera, const CameraVelocity& velocity) {
+  if (camera.rolling_shutter_readout == 0.0) return;
+  auto toStamp = [&](double raw_row) {
+    const double tau = (raw_row / camera.height - 0.5) * camera.rolling_shutter_readout;
+    return velocity.over(-tau);
+  };
+  for (size_t i = 0; i < lines.size(); ++i) {
+    LineFeature& l = lines[i];
+    Line3D& fit = lines3d[i];
+    const Eigen::Isometry3d T_start = toStamp(l.raw_start.y()), T_end = toStamp(l.raw_end.y());
+    // With the 3D segment, its ends' depths; without, the rotation alone (it dominates).
+    const double z_start = fit.valid ? fit.start.z() : 0.0, z_end = fit.valid ? fit.end.z() : 0.0;
+    auto move = [&](const Eigen::Vector2d& uv, double z, const Eigen::Isometry3d& T) {
+      return z > 0 ? camera.project(T * camera.backProject(uv, z))
+                   : camera.project(T.linear() * camera.backProject(uv, 1.0));
+    };
+    l.start = move(l.start, z_start, T_start);
+    l.end = move(l.end, z_end, T_end);
+    if (fit.valid) {
+      fit.start = T_start * fit.start;
+      fit.end = T_end * fit.end;
+    }
+  }
+}
+
 size_t FrameLines::removeIf(const std::vector<bool>& drop) {
   CV_Assert(drop.size() == lines.size());
   size_t kept = 0;

@@ -39,11 +39,23 @@ double LineFitter::depthAt(const cv::Mat& depth_m, const Eigen::Vector2d& undist
   return std::isfinite(d) && camera_.validDepth(d) ? d : 0.0;
 }
 
+constexpr double kSidePx = 2.0;  // where the two sides of a line are read
+
 double LineFitter::depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted,
                              const Eigen::Vector2d& across) const {
   // Kinect-type sensors leave a band of invalid depth along occluding edges, which are
   // exactly where image lines are: step off the line, nearer offsets first. The sample stays
   // on the line; only its depth comes from beside it.
+  // At an occluding edge the line belongs to the nearer surface, while the pixel on the line
+  // may show either: where the two sides' depths differ by more than noise, take the nearer.
+  const double side_a = depthAt(depth_m, undistorted + kSidePx * across),
+               side_b = depthAt(depth_m, undistorted - kSidePx * across);
+  if (side_a > 0.0 && side_b > 0.0) {
+    const double nearer = std::min(side_a, side_b);
+    const double gap =
+        std::max(3.0 * std::sqrt(camera_.depth_noise.variance(nearer)), 0.02 * nearer);
+    if (std::abs(side_a - side_b) > gap) return nearer;
+  }
   double z = depthAt(depth_m, undistorted);
   for (int k = 1; z <= 0.0 && k <= params_.depth_search_px; ++k) {
     z = depthAt(depth_m, undistorted + k * across);

@@ -13,6 +13,7 @@ System::System(const SystemConfig& config)
     : config_(config),
       extractor_(config.orb),
       rejector_(config.dynamic, config.camera),
+      memory_(config.dynamic.carry_frames),
       tracker_(config_, map_, extractor_.scales()),
       mapper_(config_, map_) {
   if (config_.lines.enabled) {
@@ -71,11 +72,16 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   FrameFeatures features =
       FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
                              images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0);
-  rejectDynamic(features, images.stamp, instances, result);
+  // A person the segmenter missed in this frame is still where the last frames put it.
+  const std::vector<Instance> judged = memory_.complete(instances, gray);
+  rejectDynamic(features, images.stamp, judged, result);
+  memory_.remember(judged, result.dynamic_instances, gray);
+  result.instances = judged;
   Frame frame(result.frame_id, images.stamp, std::move(features));
   result.timing.features_ms = total.elapsedMs();
   if (lines.valid()) {
     FrameLines frame_lines = lines.get();
+    if (tracker_.velocity()) frame_lines.correctMotion(config_.camera, *tracker_.velocity());
     result.dynamic_lines = frame_lines.removeIf(
         DynamicRejector::linesTouching(frame_lines.lines, result.dynamic_mask));
     frame.setLines(std::move(frame_lines));
@@ -93,7 +99,7 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
     mapper_.insertKeyFrame(result.tracking.new_keyframe);
     result.timing.mapping_ms = mapping.elapsedMs();
     result.keyframe_packet = std::make_shared<const KeyFramePacket>(
-        makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, instances,
+        makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, judged,
                            result.dynamic_instances, result.dynamic_mask));
   }
 

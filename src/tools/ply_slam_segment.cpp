@@ -106,9 +106,12 @@ int main(int argc, char** argv) {
     std::cout << std::fixed << std::setprecision(1)
               << fs::path(params.model_path).filename().string() << ": " << ms.size() << " frames, "
               << median(ms) << " ms median per frame";
-    if (truth)
+    if (truth) {
+      const long missed = std::count_if(ious.begin(), ious.end(), [](double x) { return x < 0.3; });
       std::cout << std::setprecision(3) << ", person mask IoU median " << median(ious) << " over "
-                << ious.size() << " views (walkers > 2 % of the image)";
+                << ious.size() << " views (walkers > 2 % of the image), " << missed
+                << " of them missed (IoU < 0.3)";
+    }
     std::cout << "\n";
   } catch (const std::exception& e) {
     std::cerr << "ply_slam_segment: " << e.what() << "\n";

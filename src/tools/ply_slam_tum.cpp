@@ -1,9 +1,10 @@
 // Offline run of ply_slam on a TUM RGB-D folder:
 //   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
 //                [--model ONNX --input WxH] [--dynamic off|geometric|semantic|full] [--live]
-//                [--save-images N] [--max-frames N] [--no-lines]
+//                [--save-images N] [--max-frames N] [--no-lines] [--ground-truth-masks DIR]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
-// trajectory.png into DIR.
+// trajectory.png into DIR, and with dense.enabled the dense maps (dense_map.pcd/.ply,
+// semantic_octree.ot, octree.bt, map_legend.txt, map_top.png).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -20,6 +21,9 @@
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/dense/dense_mapping_worker.h"
+#include "ply_slam/dense/map_export.h"
+#include "ply_slam/dense/top_view_renderer.h"
 #include "ply_slam/eval/feature_classification.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
@@ -46,6 +50,7 @@ struct Options {
   std::string dynamic;                    // overrides dynamic.mode of the config
   bool live = false;                      // frames at their own pace, segmentation beside
   long save_images = 0;                   // every N frames a tracking image; 0 = none
+  std::string ground_truth_masks;         // walker masks: feature classification, ghost count
 };
 
 [[noreturn]] void usage(const std::string& error) {
@@ -62,7 +67,9 @@ struct Options {
          "  --save-images N: write every N-th tracking image to DIR/images\n"
          "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n"
          "  --segmenter yolo: YOLOv8-seg, model from the config's segmentation section or"
-         " --model/--input\n";
+         " --model/--input\n"
+         "  --ground-truth-masks DIR: count dense points and octree voxels from the people of\n"
+         "    DIR/masks (default: the sequence's own masks/ when it has them)\n";
   std::exit(2);
 }
 
@@ -97,7 +104,9 @@ Options parse(int argc, char** argv) {
       if (std::sscanf(value.c_str(), "%dx%d", &o.input_width, &o.input_height) != 2 ||
           o.input_width <= 0 || o.input_height <= 0)
         usage("--input needs WxH, e.g. 320x320");
-    } else if (arg == "--max-frames")
+    } else if (arg == "--ground-truth-masks")
+      o.ground_truth_masks = value;
+    else if (arg == "--max-frames")
       o.max_frames = parseCount(arg, value);
     else if (arg == "--dynamic")
       o.dynamic = value;
@@ -146,6 +155,89 @@ std::string jsonStats(const ErrorStats& s) {
   return out.str();
 }
 
+// Dense and semantic octree maps (issue #7) ---------------------------------------------------
+
+// The people of the ground-truth masks (undilated): what a ghost in the maps would come from.
+// The ground-truth masks of the moving things (active classes) in one frame.
+cv::Mat walkerPixels(MaskFolderSegmenter& masks, const RgbdImages& images,
+                     const DynamicParams& dynamic) {
+  cv::Mat walkers = cv::Mat::zeros(images.rgb.size(), CV_8UC1);
+  for (const auto& instance : masks.segment(images))
+    if (std::count(dynamic.active_classes.begin(), dynamic.active_classes.end(),
+                   instance.class_name))
+      walkers |= instance.mask;
+  return walkers;
+}
+
+std::unique_ptr<MaskFolderSegmenter> groundTruthMasks(const Options& options,
+                                                      const TumSequence& sequence) {
+  std::string folder = options.ground_truth_masks;
+  if (folder.empty() && fs::exists(fs::path(sequence.folder()) / "masks") &&
+      fs::exists(fs::path(sequence.folder()) / "instances.txt"))
+    folder = sequence.folder();
+  return folder.empty() ? nullptr : std::make_unique<MaskFolderSegmenter>(folder);
+}
+
+// Drains the worker, re-places keyframes at their final poses, writes the maps and
+// map_top.png; returns the summary.json fields.
+std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, const fs::path& out,
+                            const std::string& title, bool counted_walkers) {
+  MapUpdate final_poses;
+  for (const auto& keyframe : system.map().keyFrames())
+    if (keyframe) final_poses.keyframes.push_back({keyframe->id, keyframe->T_wc()});
+  dense.push(final_poses);
+  dense.finish();
+  const std::vector<double> ms = dense.keyFrameMs();
+  std::ostringstream json;
+  dense.withMaps([&](DenseMap& map, const SemanticOctree& octree) {
+    Stopwatch global_watch;
+    const size_t points = map.numGlobalPoints();
+    const double global_ms = global_watch.elapsedMs();
+    writeDenseMaps(out.string(), map, octree);
+    const std::vector<SemanticOctree::Voxel> voxels = octree.occupiedVoxels();
+    const Trajectory trajectory = system.cameraTrajectory();
+    TopViewRenderer().write((out / "map_top.png").string(), voxels, trajectory,
+                            TopViewRenderer::upFromTrajectory(trajectory), octree.palette(),
+                            title + "   semantic octree, top view");
+    size_t walker_majority = 0, walker_any = 0;
+    for (const auto& v : voxels) {
+      walker_majority += 2 * v.tagged > v.hits;
+      walker_any += v.tagged > 0;
+    }
+    json << ",\n  \"dense\": {\"keyframes\": " << map.numKeyFrames() << ", \"points\": " << points
+         << ", \"points_before_octree_filter\": " << map.numUnfilteredPoints()
+         << ", \"occupied_voxels\": " << voxels.size()
+         << ", \"ms_per_keyframe_median\": " << percentile(ms, 0.5)
+         << ", \"ms_per_keyframe_p95\": " << percentile(ms, 0.95)
+         << ", \"global_cloud_ms\": " << global_ms << ", \"max_queue\": " << dense.maxQueueLength()
+         << ", \"rejected_packets\": " << dense.rejectedPackets()
+         << ", \"cloud_bytes\": " << map.memoryBytes()
+         << ", \"octree_bytes\": " << octree.memoryBytes()
+         << ", \"memory_bytes\": " << map.memoryBytes() + octree.memoryBytes();
+    if (counted_walkers) {
+      const long walker_points = map.taggedPoints();
+      const long unfiltered = map.taggedPoints(true);
+      json << ",\n    \"walkers\": {\"points\": " << walker_points
+           << ", \"points_share\": " << (points ? double(walker_points) / points : 0.0)
+           << ", \"points_before_octree_filter\": " << unfiltered
+           << ", \"points_before_octree_filter_share\": "
+           << double(unfiltered) / std::max<size_t>(1, map.numUnfilteredPoints())
+           << ", \"voxels_majority\": " << walker_majority << ", \"voxels_majority_share\": "
+           << (voxels.empty() ? 0.0 : double(walker_majority) / voxels.size())
+           << ", \"voxels_any\": " << walker_any << ", \"voxels_any_share\": "
+           << (voxels.empty() ? 0.0 : double(walker_any) / voxels.size()) << "}";
+    }
+    json << "}";
+    std::cout << "dense map " << points << " points, octree " << voxels.size()
+              << " occupied voxels; dense+octree ms per keyframe median " << percentile(ms, 0.5)
+              << ", p95 " << percentile(ms, 0.95) << "\n";
+  });
+  if (dense.rejectedPackets() > 0)
+    std::cerr << "ply_slam_tum: dense maps left out " << dense.rejectedPackets()
+              << " keyframes: " << dense.firstError() << "\n";
+  return json.str();
+}
+
 int run(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
@@ -169,14 +261,14 @@ int run(const Options& options) {
   }
   std::unique_ptr<LiveSegmenter> live;
   if (options.live) live = std::make_unique<LiveSegmenter>(std::move(segmenter));
-  // Where the folder has ground-truth masks of its moving objects, the dynamic rejection is
-  // scored against them.
-  std::unique_ptr<MaskFolderSegmenter> ground_truth;
-  if (fs::exists(fs::path(sequence.folder()) / "instances.txt"))
-    ground_truth = std::make_unique<MaskFolderSegmenter>(sequence.folder());
+  // Where there are ground-truth masks of the moving objects, the dynamic rejection and the
+  // dense maps are scored against them.
+  const std::unique_ptr<MaskFolderSegmenter> walker_masks = groundTruthMasks(options, sequence);
   FeatureClassification classification;
   if (options.save_images > 0) fs::create_directories(out / "images");
   System system(config);
+  std::unique_ptr<DenseMappingWorker> dense;
+  if (config.dense.enabled) dense = std::make_unique<DenseMappingWorker>(config.dense);
   std::ofstream timing(out / "timing.csv");
   timing
       << "frame,stamp,state,method,inliers,line_inliers,keyframe,features_ms,lines_ms,tracking_ms,"
@@ -212,12 +304,10 @@ int run(const Options& options) {
         segment_ms.push_back(watch.elapsedMs());
       }
       r = system.process(images, instances);
-      if (ground_truth) {
-        cv::Mat moving;
-        for (const auto& instance : ground_truth->segment(images))
-          moving = moving.empty() ? instance.mask.clone() : (moving | instance.mask);
-        classification.add(r.features, moving);
-      }
+      const cv::Mat walkers =
+          walker_masks ? walkerPixels(*walker_masks, images, config.dynamic) : cv::Mat();
+      if (walker_masks) classification.add(r.features, walkers);
+      if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
     } catch (const std::exception& e) {
       failure = e.what();
       break;
@@ -225,7 +315,7 @@ int run(const Options& options) {
     if (options.save_images > 0 && i % options.save_images == 0) {
       char name[32];
       std::snprintf(name, sizeof(name), "%06ld.jpg", r.frame_id);
-      cv::imwrite((out / "images" / name).string(), drawTrackingImage(images.rgb, r, instances));
+      cv::imwrite((out / "images" / name).string(), drawTrackingImage(images.rgb, r, r.instances));
     }
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
@@ -257,7 +347,7 @@ int run(const Options& options) {
   if (live)
     json << "  \"live\": {\"segmented_frames\": " << live->segmentedFrames()
          << ", \"mask_age_mean_s\": " << live->meanAgeSeconds() << "},\n";
-  if (ground_truth)
+  if (walker_masks)
     json << "  \"feature_classification\": {\"walker_features\": "
          << classification.walkerFeatures()
          << ", \"walker_kept_share\": " << classification.walkerKeptShare()
@@ -290,6 +380,7 @@ int run(const Options& options) {
               << " frames; RPE " << rpe.translation.rmse << " m, " << rpe.rotation.rmse
               << " deg per frame\n";
   }
+  if (dense) json << finishDenseMaps(*dense, system, out, title, walker_masks != nullptr);
   if (!failure.empty()) json << ",\n  \"error\": \"" << jsonEscape(failure) << "\"";
   json << "\n}\n";
   std::ofstream(out / "summary.json") << json.str();

@@ -111,6 +111,8 @@ struct DynamicParams {
   // Frames back to the frame the Delaunay check compares with: a person walking at 1 m/s moves
   // 3 cm between two 30 Hz frames, within the depth noise at 3 m; over 0.1 s it moves 10 cm.
   int baseline_frames = 3;
+  // A dynamic instance the segmenter misses is carried on (by its flow) for this many frames.
+  int carry_frames = 5;
   double match_radius_px = 30.0;  // previous -> current feature search around the prediction
   int max_descriptor_distance = 50;
   std::vector<std::string> active_classes = {
@@ -121,6 +123,24 @@ struct DynamicParams {
                                               "cell phone", "sports ball", "teddy bear"};
 };
 
+// Dense and semantic octree maps (dense module, issue #7): keyframe point clouds without the
+// pixels of moving things, and an OctoMap ColorOcTree coloured by class.
+struct DenseParams {
+  bool enabled = true;              // false: no dense map, no octree
+  int stride = 2;                   // px between sampled pixels, in both directions
+  double min_depth = 0.3;           // m; pixels nearer or farther are left out
+  double max_depth = 4.0;           // m; depth noise grows as Z^2
+  double voxel_size = 0.02;         // m; voxel filter of keyframe clouds and the global cloud
+  int dilation_px = 0;              // extra dilation of the keyframe's dynamic mask
+  double octree_resolution = 0.05;  // m; leaf size of the semantic octree
+  // OctoMap probability from which a voxel counts as occupied. A hit adds 0.85 log-odds, a
+  // ray through takes 0.41: 0.5 = one hit; 0.88 = at least three hits more than... (see yaml)
+  double octree_occupancy = 0.88;
+  bool octree_filter = true;          // the dense cloud keeps only points in occupied octree voxels
+  std::string colour_mode = "class";  // octree voxel colour: "class" (palette) or "rgb"
+  std::string palette;  // file of "class r g b" lines overriding the built-in palette; "" = none
+};
+
 struct SystemConfig {
   std::string source_path;  // the file it was loaded from
   PinholeCamera camera;
@@ -129,6 +149,7 @@ struct SystemConfig {
   TrackingParams tracking;
   YoloParams segmentation;
   DynamicParams dynamic;
+  DenseParams dense;
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and

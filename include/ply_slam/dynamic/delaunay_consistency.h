@@ -34,7 +34,18 @@ class DelaunayConsistency {
                               int height) const;
 
  private:
-  bool inconsistent(const FeatureCorrespondence& a, const FeatureCorrespondence& b) const;
+  // A change in metres and in standard deviations of its modelled noise.
+  struct Change {
+    double metres = 0.0, sigmas = 0.0;
+  };
+  Change edgeChange(const FeatureCorrespondence& a, const FeatureCorrespondence& b) const;
+  // How far `motion` leaves the feature's previous position from its current one.
+  Change residual(const FeatureCorrespondence& f, const Eigen::Isometry3d& motion) const;
+  // Beyond min_change and beyond sigma_factor standard deviations of the scaled noise.
+  bool exceeds(const Change& change, double scale) const;
+  // How much larger than modelled the noise of mostly static measurements is (>= 1), from the
+  // median of their normalised changes and that median for unit noise.
+  static double noiseScale(std::vector<double> sigmas, double median_of_unit);
 
   // Variance of a back-projected point along unit direction d: depth noise along its ray,
   // pixel noise across it.
@@ -42,8 +53,6 @@ class DelaunayConsistency {
   // Least-squares rigid motion previous -> current of the features flagged in `use`.
   Eigen::Isometry3d rigidMotion(const std::vector<FeatureCorrespondence>& features,
                                 const std::vector<bool>& use) const;
-  // Whether `motion` carries the feature's previous position onto its current one.
-  bool carried(const FeatureCorrespondence& f, const Eigen::Isometry3d& motion) const;
 
   PinholeCamera camera_;
   DelaunayConsistencyParams params_;

@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "ply_slam/common/camera_velocity.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_3d.h"
 #include "ply_slam/features/line_feature.h"
@@ -37,6 +38,10 @@ struct FrameLines {
                             LineTimings* timings = nullptr);
   // The 3D segments again, by another method, for the same 2D segments.
   void fit(const cv::Mat& depth_m, const LineFitter& fitter, LineFitMethod method);
+
+  // Undoes the camera's motion during a rolling-shutter exposure (as FrameFeatures does for
+  // points): each endpoint and 3D end is moved to where it was at the stamp. Call once.
+  void correctMotion(const PinholeCamera& camera, const CameraVelocity& velocity);
 
   size_t size() const { return lines.size(); }
   // Drops segment i where drop[i] (one flag per segment). Returns how many were dropped.

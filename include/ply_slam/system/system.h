@@ -15,6 +15,7 @@
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/semantic/instance.h"
+#include "ply_slam/semantic/instance_memory.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {
@@ -44,6 +45,7 @@ struct FrameResult {
   size_t dynamic_features = 0;  // dropped because they lay on a moving object
   size_t dynamic_lines = 0;     // lines dropped: an endpoint on a dynamic instance
   std::vector<FeatureMark> features;
+  std::vector<Instance> instances;  // as judged: the segmenter's and those carried on for it
   std::set<int> dynamic_instances;  // ids of the instances judged moving
   cv::Mat dynamic_mask;             // their dilated union (8UC1), empty when none
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
@@ -87,6 +89,7 @@ class System {
   std::unique_ptr<LineExtractor> line_extractor_;  // null when lines are disabled
   std::unique_ptr<LineFitter> line_fitter_;
   DynamicRejector rejector_;
+  InstanceMemory memory_;
   Map map_;
   Tracker tracker_;
   Mapper mapper_;

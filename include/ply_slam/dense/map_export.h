@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ply_slam/dense/dense_map.h"
+#include "ply_slam/dense/semantic_octree.h"
+
+namespace ply_slam {
+
+// Writes the maps into `folder` (created if missing): dense_map.pcd and dense_map.ply (x y z,
+// rgb, label), semantic_octree.ot (ColorOcTree, opens in octovis), octree.bt (occupancy only)
+// and map_legend.txt (the classes in the maps, with their colours). Returns the paths written;
+// throws std::runtime_error naming the file that could not be written.
+std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& dense,
+                                        const SemanticOctree& octree);
+
+}  // namespace ply_slam

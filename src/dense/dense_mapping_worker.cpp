@@ -1,0 +1,121 @@
+#include "ply_slam/dense/dense_mapping_worker.h"
+
+#include <stdexcept>
+
+#include "ply_slam/common/stopwatch.h"
+
+namespace ply_slam {
+namespace {
+
+ClassPalette paletteOf(const DenseParams& params) {
+  return params.palette.empty() ? ClassPalette() : ClassPalette::fromFile(params.palette);
+}
+
+}  // namespace
+
+DenseMappingWorker::DenseMappingWorker(const DenseParams& params)
+    : builder_(params, paletteOf(params)),
+      map_(params.voxel_size),
+      octree_(params.octree_resolution, SemanticOctree::parseColourMode(params.colour_mode),
+              paletteOf(params), params.octree_occupancy) {
+  if (params.octree_filter) map_.keepOnlyOccupied(&octree_);
+  thread_ = std::thread([this] { run(); });
+}
+
+DenseMappingWorker::~DenseMappingWorker() { finish(); }
+
+void DenseMappingWorker::enqueue(Job job) {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (stopping_) throw std::logic_error("DenseMappingWorker: push after finish()");
+    queue_.push_back(std::move(job));
+    max_queue_ = std::max(max_queue_, queue_.size());
+  }
+  queue_changed_.notify_one();
+}
+
+void DenseMappingWorker::push(std::shared_ptr<const KeyFramePacket> packet, cv::Mat tag_mask) {
+  if (!packet) throw std::invalid_argument("DenseMappingWorker::push: null packet");
+  enqueue({std::move(packet), std::move(tag_mask), nullptr});
+}
+
+void DenseMappingWorker::push(const MapUpdate& update) {
+  enqueue({nullptr, cv::Mat(), std::make_shared<const MapUpdate>(update)});
+}
+
+void DenseMappingWorker::finish() {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    stopping_ = true;
+  }
+  queue_changed_.notify_one();
+  if (thread_.joinable()) thread_.join();
+}
+
+void DenseMappingWorker::run() {
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stopping, and everything is done
+      job = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    process(job);
+  }
+}
+
+void DenseMappingWorker::process(const Job& job) {
+  try {
+    if (job.packet) {
+      Stopwatch watch;
+      // The cloud is built outside the maps' lock: readers wait only for the insertion.
+      KeyFrameCloud cloud = builder_.build(*job.packet, job.tag_mask);
+      {
+        std::lock_guard<std::mutex> lock(maps_mutex_);
+        octree_.insert(cloud);
+        map_.insert(std::move(cloud));
+      }
+      const double ms = watch.elapsedMs();
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      keyframe_ms_.push_back(ms);
+    } else if (job.update) {
+      std::lock_guard<std::mutex> lock(maps_mutex_);
+      if (map_.applyUpdate(*job.update).empty()) return;
+      // Ray casting cannot be undone per keyframe: the octree is rebuilt in keyframe order.
+      octree_.clear();
+      for (const auto& [id, cloud] : map_.keyFrames()) octree_.insert(cloud);
+    }
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (rejected_++ == 0) first_error_ = e.what();
+  }
+}
+
+void DenseMappingWorker::withMaps(const std::function<void(DenseMap&, const SemanticOctree&)>& f) {
+  std::lock_guard<std::mutex> lock(maps_mutex_);
+  f(map_, octree_);
+}
+
+std::vector<double> DenseMappingWorker::keyFrameMs() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return keyframe_ms_;
+}
+
+size_t DenseMappingWorker::maxQueueLength() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return max_queue_;
+}
+
+size_t DenseMappingWorker::rejectedPackets() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return rejected_;
+}
+
+std::string DenseMappingWorker::firstError() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return first_error_;
+}
+
+}  // namespace ply_slam

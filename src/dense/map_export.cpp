@@ -1,0 +1,53 @@
+#include "ply_slam/dense/map_export.h"
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+namespace ply_slam {
+
+std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& dense,
+                                        const SemanticOctree& octree) {
+  namespace fs = std::filesystem;
+  fs::create_directories(folder);
+  const fs::path dir(folder);
+  std::vector<std::string> written;
+
+  const DenseCloudPtr cloud = dense.globalCloud();
+  const std::string pcd = (dir / "dense_map.pcd").string();
+  const std::string ply = (dir / "dense_map.ply").string();
+  // PCL refuses to write an empty cloud; an empty map is still a valid (empty) result.
+  DenseCloud to_write = *cloud;
+  to_write.width = static_cast<std::uint32_t>(to_write.size());
+  to_write.height = 1;
+  if (!to_write.empty()) {
+    if (pcl::io::savePCDFileBinary(pcd, to_write) != 0)
+      throw std::runtime_error("cannot write " + pcd);
+    if (pcl::io::savePLYFileBinary(ply, to_write) != 0)
+      throw std::runtime_error("cannot write " + ply);
+    written.push_back(pcd);
+    written.push_back(ply);
+  }
+
+  const std::string ot = (dir / "semantic_octree.ot").string();
+  const std::string bt = (dir / "octree.bt").string();
+  octree.writeColourTree(ot);
+  octree.writeBinaryTree(bt);
+  written.push_back(ot);
+  written.push_back(bt);
+
+  std::set<std::uint32_t> labels{ClassPalette::kUnknown};
+  for (const auto& p : cloud->points) labels.insert(p.label);
+  for (const auto& v : octree.occupiedVoxels()) labels.insert(v.label);
+  const std::string legend = (dir / "map_legend.txt").string();
+  octree.palette().writeLegend(legend, {labels.begin(), labels.end()});
+  written.push_back(legend);
+  return written;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,158 @@
+#include "ply_slam/dense/top_view_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace ply_slam {
+namespace {
+
+// A right-handed frame whose z is `up`: map x = e1, map y = e2.
+struct ViewFrame {
+  Eigen::Vector3d e1, e2, up;
+  explicit ViewFrame(const Eigen::Vector3d& up_in) : up(up_in.normalized()) {
+    const Eigen::Vector3d seed =
+        std::abs(up.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    e1 = (seed - seed.dot(up) * up).normalized();
+    e2 = up.cross(e1);
+  }
+};
+
+cv::Scalar bgr(const ClassColour& c, double shade = 1.0) {
+  return cv::Scalar(c.b * shade, c.g * shade, c.r * shade);
+}
+
+}  // namespace
+
+TopViewRenderer::TopViewRenderer(double max_height_above_camera, int max_map_px)
+    : max_height_above_camera_(max_height_above_camera), max_map_px_(max_map_px) {
+  if (max_map_px < 100) throw std::invalid_argument("TopViewRenderer: max_map_px must be >= 100");
+}
+
+Eigen::Vector3d TopViewRenderer::upFromTrajectory(const Trajectory& trajectory) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& p : trajectory) sum -= p.T_wc.linear().col(1);
+  return sum.norm() > 1e-9 ? Eigen::Vector3d(sum.normalized()) : Eigen::Vector3d::UnitZ();
+}
+
+cv::Mat TopViewRenderer::render(const std::vector<SemanticOctree::Voxel>& voxels,
+                                const Trajectory& trajectory, const Eigen::Vector3d& up,
+                                const ClassPalette& palette, const std::string& title) const {
+  const ViewFrame frame(up);
+  double ceiling = std::numeric_limits<double>::infinity();
+  if (!trajectory.empty()) {
+    ceiling = -ceiling;
+    for (const auto& p : trajectory)
+      ceiling = std::max(ceiling, p.T_wc.translation().dot(frame.up));
+    ceiling += max_height_above_camera_;
+  }
+
+  // Extent of what is drawn, in map coordinates (m).
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9, z0 = 1e9, z1 = -1e9, voxel = 0.05;
+  auto grow = [&](const Eigen::Vector3d& p) {
+    x0 = std::min(x0, p.dot(frame.e1)), x1 = std::max(x1, p.dot(frame.e1));
+    y0 = std::min(y0, p.dot(frame.e2)), y1 = std::max(y1, p.dot(frame.e2));
+  };
+  std::vector<const SemanticOctree::Voxel*> shown;
+  for (const auto& v : voxels) {
+    const double h = v.centre.dot(frame.up);
+    if (h > ceiling) continue;
+    shown.push_back(&v);
+    grow(v.centre);
+    z0 = std::min(z0, h), z1 = std::max(z1, h);
+    voxel = v.size;
+  }
+  for (const auto& p : trajectory) grow(p.T_wc.translation());
+  if (x0 > x1) x0 = -1, x1 = 1, y0 = -1, y1 = 1;
+  const double margin = 0.3;
+  x0 -= margin, x1 += margin, y0 -= margin, y1 += margin;
+  const double px_per_m = max_map_px_ / std::max(x1 - x0, y1 - y0);
+  const int map_w = static_cast<int>(std::ceil((x1 - x0) * px_per_m));
+  const int map_h = static_cast<int>(std::ceil((y1 - y0) * px_per_m));
+  const int legend_w = 230, title_h = 30;
+  cv::Mat image(std::max(map_h, 300) + title_h, map_w + legend_w, CV_8UC3,
+                cv::Scalar(255, 255, 255));
+  const cv::Rect map_area(0, title_h, map_w, map_h);
+  cv::Mat map = image(map_area);
+  // Map y grows away from the viewer's bottom edge: image rows run the other way.
+  auto toPixel = [&](const Eigen::Vector3d& p) {
+    return cv::Point2d((p.dot(frame.e1) - x0) * px_per_m, (y1 - p.dot(frame.e2)) * px_per_m);
+  };
+
+  // Highest voxel per column wins: draw from the lowest up.
+  std::sort(shown.begin(), shown.end(), [&](const auto* a, const auto* b) {
+    return a->centre.dot(frame.up) < b->centre.dot(frame.up);
+  });
+  const double half = 0.5 * voxel * px_per_m;
+  std::map<std::uint32_t, size_t> columns_per_label;
+  for (const auto* v : shown) {
+    const double h = v->centre.dot(frame.up);
+    const double shade = z1 > z0 ? 0.55 + 0.45 * (h - z0) / (z1 - z0) : 1.0;
+    const cv::Point2d c = toPixel(v->centre);
+    cv::rectangle(map, cv::Point(std::lround(c.x - half), std::lround(c.y - half)),
+                  cv::Point(std::lround(c.x + half), std::lround(c.y + half)),
+                  bgr(v->colour, shade), cv::FILLED);
+    ++columns_per_label[v->label];
+  }
+
+  // Trajectory: a dark line with a white casing, start circle, end square.
+  if (!trajectory.empty()) {
+    std::vector<cv::Point> line;
+    for (const auto& p : trajectory) {
+      const cv::Point2d q = toPixel(p.T_wc.translation());
+      line.emplace_back(std::lround(q.x), std::lround(q.y));
+    }
+    cv::polylines(map, line, false, cv::Scalar(255, 255, 255), 5, cv::LINE_AA);
+    cv::polylines(map, line, false, cv::Scalar(40, 40, 40), 2, cv::LINE_AA);
+    cv::circle(map, line.front(), 6, cv::Scalar(0, 160, 0), cv::FILLED, cv::LINE_AA);
+    cv::rectangle(map, line.back() - cv::Point(5, 5), line.back() + cv::Point(5, 5),
+                  cv::Scalar(0, 0, 200), cv::FILLED);
+  }
+
+  // 1 m scale bar in the bottom-left corner.
+  const int bar = static_cast<int>(std::lround(px_per_m));
+  const cv::Point bar_start(15, map_h - 15);
+  cv::line(map, bar_start, bar_start + cv::Point(bar, 0), cv::Scalar(0, 0, 0), 3);
+  cv::putText(map, "1 m", bar_start + cv::Point(0, -8), cv::FONT_HERSHEY_SIMPLEX, 0.5,
+              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+
+  cv::putText(image, title, cv::Point(8, 21), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0),
+              1, cv::LINE_AA);
+  // Legend: the classes shown, most columns first; trajectory marks.
+  std::vector<std::pair<size_t, std::uint32_t>> order;
+  for (const auto& [label, n] : columns_per_label) order.emplace_back(n, label);
+  std::sort(order.rbegin(), order.rend());
+  int y = title_h + 20;
+  const int x = map_w + 12;
+  auto entry = [&](const cv::Scalar& colour, const std::string& text) {
+    cv::rectangle(image, cv::Rect(x, y - 11, 14, 14), colour, cv::FILLED);
+    cv::putText(image, text, cv::Point(x + 22, y), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    y += 20;
+  };
+  for (const auto& [n, label] : order) {
+    if (y > image.rows - 60) break;
+    entry(bgr(palette.colour(label)), palette.name(label));
+  }
+  y += 10;
+  entry(cv::Scalar(0, 160, 0), "trajectory start");
+  entry(cv::Scalar(0, 0, 200), "trajectory end");
+  cv::putText(image, "voxel " + std::to_string(static_cast<int>(std::lround(voxel * 100))) + " cm",
+              cv::Point(x, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
+  return image;
+}
+
+void TopViewRenderer::write(const std::string& png_path,
+                            const std::vector<SemanticOctree::Voxel>& voxels,
+                            const Trajectory& trajectory, const Eigen::Vector3d& up,
+                            const ClassPalette& palette, const std::string& title) const {
+  if (!cv::imwrite(png_path, render(voxels, trajectory, up, palette, title)))
+    throw std::runtime_error("cannot write " + png_path);
+}
+
+}  // namespace ply_slam
