@@ -12,6 +12,13 @@ PLY_SLAM_PACKAGES=(
   build-essential cmake catkin python3-catkin-pkg
   libopencv-dev libopencv-contrib-dev libceres-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev googletest opencv-doc
+  # ROS 1 layer (nodes, messages, rostest) and scripts/tum_to_bag.py, rviz
+  ros-base-dev libroscpp-dev librosbag-dev python3-rosbag rosbash ros-message-generation
+  ros-message-runtime librostest-dev python3-rostest ros-std-msgs ros-std-srvs ros-sensor-msgs
+  ros-geometry-msgs ros-nav-msgs ros-visualization-msgs libstd-msgs-dev libstd-srvs-dev
+  libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
+  libcv-bridge-dev libmessage-filters-dev libtf2-dev libtf2-ros-dev tf2-tools python3-sensor-msgs
+  python3-geometry-msgs python3-std-msgs python3-opencv python3-numpy python3-yaml rviz
   libpcl-dev liboctomap-dev
 )
 
@@ -30,10 +37,18 @@ ply_slam_install_packages() {
 }
 
 ply_slam_build() {
-  mkdir -p "${PLY_SLAM_WS}/src"
-  ln -sfn "${PLY_SLAM_ROOT}" "${PLY_SLAM_WS}/src/ply_slam"
+  # The source space is the hidden folder .src: roslaunch, rosrun and rostest search a
+  # package's whole tree (following links, skipping dot-folders) and would otherwise follow
+  # build/ws/src/ply_slam back into this repository for ever.
+  if [ -L "${PLY_SLAM_WS}/src/ply_slam" ]; then  # a workspace made before: move it over
+    rm -f "${PLY_SLAM_WS}/src/ply_slam" "${PLY_SLAM_WS}/src/CMakeLists.txt"
+    rmdir "${PLY_SLAM_WS}/src" 2>/dev/null || true
+    rm -rf "${PLY_SLAM_WS}/build"
+  fi
+  mkdir -p "${PLY_SLAM_WS}/.src"
+  ln -sfn "${PLY_SLAM_ROOT}" "${PLY_SLAM_WS}/.src/ply_slam"
   (cd "${PLY_SLAM_WS}" &&
-     catkin_make -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" \
+     catkin_make --source .src -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" \
        >"${PLY_SLAM_WS}/build.log" 2>&1) || {
     tail -n 60 "${PLY_SLAM_WS}/build.log"
     echo "[setup] build failed; full log: ${PLY_SLAM_WS}/build.log" >&2

@@ -253,17 +253,8 @@ void readDense(Section s, DenseParams& d) {
   s.rejectUnknownKeys();
 }
 
-}  // namespace
-
-SystemConfig loadConfig(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError("config " + path + ": cannot open the file");
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("config " + path + ": not valid YAML: " + e.what());
-  }
+// Every check of loadConfig, on a parsed document; `path` names it in errors.
+SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
 
   SystemConfig config;
@@ -279,6 +270,30 @@ SystemConfig loadConfig(const std::string& path) {
   readDense(top.child("dense"), config.dense);
   top.rejectUnknownKeys();
   return config;
+}
+
+}  // namespace
+
+SystemConfig loadConfig(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError("config " + path + ": cannot open the file");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config " + path + ": not valid YAML: " + e.what());
+  }
+  return parseConfig(root, path);
+}
+
+SystemConfig loadConfigFromString(const std::string& yaml_text, const std::string& source_name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config " + source_name + ": not valid YAML: " + e.what());
+  }
+  return parseConfig(root, source_name);
 }
 
 }  // namespace ply_slam

@@ -155,5 +155,8 @@ struct SystemConfig {
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and
 // out-of-range values throw ConfigError naming the file and key.
 SystemConfig loadConfig(const std::string& path);
+// The same from YAML text (the ROS nodes rebuild it from the parameter server); errors name
+// `source_name` where loadConfig names the file.
+SystemConfig loadConfigFromString(const std::string& yaml_text, const std::string& source_name);
 
 }  // namespace ply_slam

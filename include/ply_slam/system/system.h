@@ -68,6 +68,10 @@ class System {
   // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
   FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
 
+  // Corrections from the mapping side (mapping_node's ~map_update): keyframe poses, landmark
+  // positions and merges go into the map the tracker uses. Returns the entries applied.
+  size_t applyMapUpdate(const MapUpdate& update) { return map_.applyUpdate(update); }
+
   const Trajectory& cameraTrajectory() const { return camera_trajectory_; }  // tracked frames
   Trajectory keyFrameTrajectory() const;
   const Map& map() const { return map_; }

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <geometry_msgs/PoseStamped.h>
+#include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/SaveToPath.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <mutex>
+#include <optional>
+
+#include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/map/map_store.h"
+#include "ply_slam/ros/bad_input_log.h"
+
+namespace ply_slam {
+
+// ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps the map from the tracker's
+// keyframes (MapStore), shows it (points, lines, keyframes, path), broadcasts tf and saves
+// trajectory and map on request. Local bundle adjustment still runs inside the tracking
+// process (System); see onKeyFrame for where it and loop closure will go.
+class MappingNode {
+ public:
+  MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
+  void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
+  bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
+  bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
+  void publishMap(const ros::Time& stamp);
+  void broadcastTf(const ros::Time& stamp, const Eigen::Isometry3d& T_world_camera);
+
+  ros::NodeHandle nh_, pnh_;
+  std::string map_frame_, world_frame_, odom_frame_, base_frame_, camera_frame_;
+
+  std::mutex mutex_;  // store_, camera_trajectory_, camera frame (callbacks vs services)
+  MapStore store_;
+  Trajectory camera_trajectory_;  // every tracked frame, from the tracker's ~pose
+  BadInputLog bad_input_;
+
+  ros::Subscriber keyframe_sub_, pose_sub_;
+  ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_, update_pub_;
+  ros::ServiceServer save_trajectory_srv_, save_map_srv_;
+
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
+  std::optional<Eigen::Isometry3d> T_map_world_;  // with odometry: map = base at the start
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,101 @@
+#pragma once
+
+#include <message_filters/subscriber.h>
+#include <message_filters/sync_policies/approximate_time.h>
+#include <message_filters/synchronizer.h>
+#include <nav_msgs/Path.h>
+#include <ply_slam/MapUpdateMsg.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "ply_slam/ros/bad_input_log.h"
+#include "ply_slam/ros/rgbd_message_decoder.h"
+#include "ply_slam/semantic/live_segmenter.h"
+#include "ply_slam/system/system.h"
+
+namespace ply_slam {
+
+// ROS glue of the tracking side (DESIGN.md, "ROS interface"): synchronised RGB + depth (+
+// camera_info) -> System::process -> pose, path, images, keyframes; ~map_update from the
+// mapping node -> System::applyMapUpdate. Frames are tracked on a worker thread in arrival
+// order so the subscribers never block; bad input is counted, logged throttled and skipped.
+class TrackingNode {
+ public:
+  TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~TrackingNode();
+
+ private:
+  using Image = sensor_msgs::Image;
+  using SyncPolicy = message_filters::sync_policies::ApproximateTime<Image, Image>;
+  struct Job {
+    sensor_msgs::ImageConstPtr rgb, depth;
+    ply_slam::MapUpdateMsgConstPtr update;
+  };
+
+  void onImages(const sensor_msgs::ImageConstPtr& rgb, const sensor_msgs::ImageConstPtr& depth);
+  void onRgb(const sensor_msgs::ImageConstPtr& rgb);
+  void onDepth(const sensor_msgs::ImageConstPtr& depth);
+  void flushStalledPair();
+  void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
+  void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& update);
+  void enqueue(Job job);
+  void work();
+  void track(const Image& rgb, const Image& depth);
+  void startSystem(const sensor_msgs::CameraInfo* info);
+  void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
+               const FrameResult& result);
+  void publishStats();
+
+  ros::NodeHandle nh_, pnh_;
+  SystemConfig config_;
+  bool use_camera_info_ = true;
+  bool publish_images_ = true;
+  std::string world_frame_;
+  size_t frame_queue_size_ = 100;
+
+  std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
+  std::unique_ptr<LiveSegmenter> segmenter_;  // null: no model configured
+  RgbdMessageDecoder decoder_;
+  BadInputLog bad_input_;
+
+  message_filters::Subscriber<Image> rgb_sub_, depth_sub_;
+  std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
+  ros::Subscriber info_sub_, update_sub_;
+  ros::Publisher pose_pub_, path_pub_, keyframe_pub_, stats_pub_;
+  ros::Publisher tracking_image_pub_, segmentation_image_pub_;
+  nav_msgs::Path path_;
+
+  // The synchroniser emits a pair only once a later message proves no better match can come,
+  // so the last pair of a stream (a bag's last frame) would wait for ever. When the stream has
+  // been quiet for flush_after_s_ the newest unpaired rgb + depth are tracked as a pair.
+  double sync_slop_ = 0.02, flush_after_s_ = 0.5;
+  sensor_msgs::ImageConstPtr newest_rgb_, newest_depth_;
+  ros::WallTime newest_arrival_;
+  ros::Time last_paired_rgb_stamp_, last_paired_depth_stamp_;
+  ros::WallTimer flush_timer_;
+
+  std::mutex info_mutex_;
+  sensor_msgs::CameraInfoConstPtr camera_info_;
+
+  std::mutex queue_mutex_;
+  std::condition_variable queue_cv_;
+  std::deque<Job> queue_;
+  bool stopping_ = false;
+  std::thread worker_;
+
+  // Counters for ~stats and the shutdown report.
+  std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
+  std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
+      updates_{0};
+  std::vector<double> total_ms_;  // worker thread only
+};
+
+}  // namespace ply_slam

@@ -1,0 +1,92 @@
+#include "ply_slam/map/map_store.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <stdexcept>
+
+#include "ply_slam/io/tum_trajectory_file.h"
+
+namespace ply_slam {
+namespace {
+
+std::ofstream openForWriting(const std::filesystem::path& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  out << std::setprecision(9);
+  return out;
+}
+
+void writeVertex(std::ofstream& out, const Eigen::Vector3d& p) {
+  out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+}
+
+}  // namespace
+
+bool MapStore::insert(const KeyFramePacket& packet) {
+  const auto it = keyframes_.find(packet.id);
+  if (it != keyframes_.end() && it->second.stamp > packet.stamp) return false;
+  KeyFramePacket kept = packet;
+  kept.rgb.release();
+  kept.depth.release();
+  kept.label_image.release();
+  kept.dynamic_mask.release();
+  keyframes_[packet.id] = std::move(kept);
+  for (const auto& p : packet.points) points_[p.id] = p;
+  for (const auto& l : packet.lines) lines_[l.id] = l;
+  return true;
+}
+
+void MapStore::apply(const MapUpdate& update) {
+  for (const auto& k : update.keyframes) {
+    const auto it = keyframes_.find(k.id);
+    if (it != keyframes_.end()) it->second.T_wc = k.T_wc;
+  }
+  for (const auto& p : update.points) points_[p.id] = p;
+  for (const auto& l : update.lines) lines_[l.id] = l;
+  for (const auto& m : update.merged_points) points_.erase(m.from);
+}
+
+Trajectory MapStore::keyFrameTrajectory() const {
+  Trajectory trajectory;
+  for (const auto& [id, kf] : keyframes_) trajectory.push_back({kf.stamp, kf.T_wc});
+  return trajectory;
+}
+
+void MapStore::save(const std::string& folder) const {
+  namespace fs = std::filesystem;
+  fs::create_directories(folder);
+  const fs::path dir(folder);
+  writeTumTrajectory((dir / "KeyFrameTrajectory.txt").string(), keyFrameTrajectory());
+
+  auto points = openForWriting(dir / "map_points.ply");
+  points << "ply\nformat ascii 1.0\nelement vertex " << points_.size()
+         << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (const auto& [id, p] : points_) writeVertex(points, p.position);
+
+  auto lines = openForWriting(dir / "map_lines.ply");
+  lines << "ply\nformat ascii 1.0\nelement vertex " << 2 * lines_.size()
+        << "\nproperty float x\nproperty float y\nproperty float z\nelement edge " << lines_.size()
+        << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+  for (const auto& [id, l] : lines_) {
+    writeVertex(lines, l.start);
+    writeVertex(lines, l.end);
+  }
+  for (size_t i = 0; i < lines_.size(); ++i) lines << 2 * i << ' ' << 2 * i + 1 << '\n';
+
+  auto keyframes = openForWriting(dir / "keyframes.csv");
+  keyframes << "id,frame,stamp,keypoints,points,lines,instances\n";
+  for (const auto& [id, kf] : keyframes_) {
+    std::string instances;
+    for (const auto& instance : kf.instances)
+      instances += (instances.empty() ? "" : " ") + instance.class_name +
+                   (instance.dynamic ? "(dynamic)" : "");
+    keyframes << id << ',' << kf.frame_id << ',' << std::fixed << std::setprecision(6) << kf.stamp
+              << ',' << kf.keypoints.size() << ',' << kf.points.size() << ',' << kf.lines.size()
+              << ',' << instances << '\n';
+  }
+  for (auto* out : {&points, &lines, &keyframes})
+    if (!out->flush()) throw std::runtime_error("cannot write into " + folder);
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,262 @@
+#include "ply_slam/ros/conversions.h"
+
+#include <cv_bridge/cv_bridge.h>
+#include <sensor_msgs/image_encodings.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ply_slam {
+namespace {
+
+namespace enc = sensor_msgs::image_encodings;
+
+geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p) {
+  geometry_msgs::Point m;
+  m.x = p.x();
+  m.y = p.y();
+  m.z = p.z();
+  return m;
+}
+
+Eigen::Vector3d fromPointMsg(const geometry_msgs::Point& m) { return {m.x, m.y, m.z}; }
+
+LandmarkMsg toMsg(const LandmarkPoint& p) {
+  LandmarkMsg m;
+  m.id = p.id;
+  m.position = toPointMsg(p.position);
+  return m;
+}
+
+LandmarkPoint fromMsg(const LandmarkMsg& m) { return {m.id, fromPointMsg(m.position)}; }
+
+Line3DMsg toMsg(const LandmarkLine& l) {
+  Line3DMsg m;
+  m.id = l.id;
+  m.start = toPointMsg(l.start);
+  m.end = toPointMsg(l.end);
+  return m;
+}
+
+LandmarkLine fromMsg(const Line3DMsg& m) {
+  return {m.id, fromPointMsg(m.start), fromPointMsg(m.end)};
+}
+
+InstanceMsg toMsg(const PacketInstance& instance) {
+  InstanceMsg m;
+  m.id = instance.id;
+  m.class_name = instance.class_name;
+  m.score = instance.score;
+  m.dynamic = instance.dynamic;
+  return m;
+}
+
+PacketInstance fromMsg(const InstanceMsg& m) {
+  return {m.id, m.class_name, m.score, static_cast<bool>(m.dynamic)};
+}
+
+LandmarkMergeMsg toMsg(const MapUpdate::Merge& merge) {
+  LandmarkMergeMsg m;
+  m.from_id = merge.from;
+  m.to_id = merge.to;
+  return m;
+}
+
+MapUpdate::Merge fromMsg(const LandmarkMergeMsg& m) { return {m.from_id, m.to_id}; }
+
+CameraMsg toMsg(const PinholeCamera& c) {
+  CameraMsg m;
+  m.fx = c.fx;
+  m.fy = c.fy;
+  m.cx = c.cx;
+  m.cy = c.cy;
+  m.width = c.width;
+  m.height = c.height;
+  cv::Mat d;
+  if (!c.distortion.empty()) c.distortion.convertTo(d, CV_64F);
+  m.distortion.assign(d.begin<double>(), d.end<double>());
+  m.depth_factor = c.depth_factor;
+  m.min_depth = c.min_depth;
+  m.max_depth = c.max_depth;
+  m.depth_noise_alpha = c.depth_noise.alpha;
+  m.depth_noise_beta = c.depth_noise.beta;
+  m.depth_noise_gamma = c.depth_noise.gamma;
+  m.rolling_shutter_readout = c.rolling_shutter_readout;
+  return m;
+}
+
+PinholeCamera fromMsg(const CameraMsg& m) {
+  PinholeCamera c;
+  c.fx = m.fx;
+  c.fy = m.fy;
+  c.cx = m.cx;
+  c.cy = m.cy;
+  c.width = m.width;
+  c.height = m.height;
+  if (!m.distortion.empty())
+    c.distortion = cv::Mat(m.distortion, true).reshape(1, 1);  // 1xN CV_64F
+  c.depth_factor = m.depth_factor;
+  c.min_depth = m.min_depth;
+  c.max_depth = m.max_depth;
+  c.depth_noise = {m.depth_noise_alpha, m.depth_noise_beta, m.depth_noise_gamma};
+  c.rolling_shutter_readout = m.rolling_shutter_readout;
+  return c;
+}
+
+// An empty cv::Mat travels as a 0x0 image.
+sensor_msgs::Image toImageMsg(const cv::Mat& image, const std::string& encoding) {
+  sensor_msgs::Image m;
+  if (image.empty()) {
+    m.encoding = encoding;
+    return m;
+  }
+  cv_bridge::CvImage(std_msgs::Header(), encoding, image).toImageMsg(m);
+  return m;
+}
+
+cv::Mat fromImageMsg(const sensor_msgs::Image& m, const std::string& encoding,
+                     const std::string& what) {
+  if (m.width == 0 || m.height == 0) return {};
+  if (m.encoding != encoding)
+    throw std::invalid_argument("keyframe " + what + " must be " + encoding + ", not " +
+                                m.encoding);
+  return cv_bridge::toCvCopy(m, encoding)->image;
+}
+
+}  // namespace
+
+geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& T) {
+  geometry_msgs::Pose m;
+  m.position = toPointMsg(T.translation());
+  const Eigen::Quaterniond q(T.rotation());
+  m.orientation.x = q.x();
+  m.orientation.y = q.y();
+  m.orientation.z = q.z();
+  m.orientation.w = q.w();
+  return m;
+}
+
+Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& m) {
+  Eigen::Quaterniond q(m.orientation.w, m.orientation.x, m.orientation.y, m.orientation.z);
+  const double n = q.norm();
+  if (!std::isfinite(n) || n < 1e-6) throw std::invalid_argument("pose has no valid quaternion");
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = q.normalized().toRotationMatrix();
+  T.translation() = fromPointMsg(m.position);
+  return T;
+}
+
+namespace {
+
+KeyFramePoseMsg toMsg(const MapUpdate::KeyFramePose& k) {
+  KeyFramePoseMsg m;
+  m.id = k.id;
+  m.T_wc = toPoseMsg(k.T_wc);
+  return m;
+}
+
+MapUpdate::KeyFramePose fromMsg(const KeyFramePoseMsg& m) { return {m.id, fromPoseMsg(m.T_wc)}; }
+
+// Element-wise conversions of lists.
+template <typename Msg, typename From>
+std::vector<Msg> toMsgs(const std::vector<From>& from) {
+  std::vector<Msg> to;
+  for (const auto& f : from) to.push_back(toMsg(f));
+  return to;
+}
+
+template <typename To, typename Msg>
+std::vector<To> fromMsgs(const std::vector<Msg>& from) {
+  std::vector<To> to;
+  for (const auto& f : from) to.push_back(fromMsg(f));
+  return to;
+}
+
+}  // namespace
+
+KeyFrameMsg toMsg(const KeyFramePacket& p, const std::string& world_frame) {
+  KeyFrameMsg m;
+  m.header.frame_id = world_frame;
+  m.header.stamp.fromSec(p.stamp);
+  m.id = p.id;
+  m.frame_id = p.frame_id;
+  m.stamp = p.stamp;
+  m.T_wc = toPoseMsg(p.T_wc);
+  m.camera = toMsg(p.camera);
+  m.keypoints.resize(p.keypoints.size());
+  for (size_t i = 0; i < p.keypoints.size(); ++i) {
+    auto& k = m.keypoints[i];
+    k.u = p.keypoints[i].x();
+    k.v = p.keypoints[i].y();
+    k.depth = i < p.keypoint_depth.size() ? p.keypoint_depth[i] : 0.f;
+    k.level = i < p.keypoint_level.size() ? p.keypoint_level[i] : 0;
+    k.landmark = i < p.keypoint_landmark.size() ? p.keypoint_landmark[i] : -1;
+  }
+  const cv::Mat d = p.descriptors.isContinuous() ? p.descriptors : p.descriptors.clone();
+  m.descriptor_bytes = d.cols;
+  m.descriptors.assign(d.data, d.data + d.total() * d.elemSize());
+  m.points = toMsgs<LandmarkMsg>(p.points);
+  m.lines = toMsgs<Line3DMsg>(p.lines);
+  m.rgb = toImageMsg(p.rgb, enc::BGR8);
+  m.depth = toImageMsg(p.depth, enc::TYPE_32FC1);
+  m.label_image = toImageMsg(p.label_image, enc::TYPE_16UC1);
+  m.dynamic_mask = toImageMsg(p.dynamic_mask, enc::MONO8);
+  m.instances = toMsgs<InstanceMsg>(p.instances);
+  return m;
+}
+
+KeyFramePacket fromMsg(const KeyFrameMsg& m) {
+  KeyFramePacket p;
+  p.id = m.id;
+  p.frame_id = m.frame_id;
+  p.stamp = m.stamp;
+  p.T_wc = fromPoseMsg(m.T_wc);
+  p.camera = fromMsg(m.camera);
+  const size_t n = m.keypoints.size();
+  if (n > 0 && (m.descriptor_bytes <= 0 || m.descriptors.size() != n * m.descriptor_bytes))
+    throw std::invalid_argument("keyframe has " + std::to_string(n) + " keypoints but " +
+                                std::to_string(m.descriptors.size()) + " descriptor bytes of " +
+                                std::to_string(m.descriptor_bytes) + " per row");
+  for (const auto& k : m.keypoints) {
+    p.keypoints.emplace_back(k.u, k.v);
+    p.keypoint_depth.push_back(k.depth);
+    p.keypoint_level.push_back(k.level);
+    p.keypoint_landmark.push_back(k.landmark);
+  }
+  if (n > 0)
+    p.descriptors = cv::Mat(static_cast<int>(n), m.descriptor_bytes, CV_8U,
+                            const_cast<uint8_t*>(m.descriptors.data()))
+                        .clone();
+  p.points = fromMsgs<LandmarkPoint>(m.points);
+  p.lines = fromMsgs<LandmarkLine>(m.lines);
+  p.rgb = fromImageMsg(m.rgb, enc::BGR8, "rgb");
+  p.depth = fromImageMsg(m.depth, enc::TYPE_32FC1, "depth");
+  p.label_image = fromImageMsg(m.label_image, enc::TYPE_16UC1, "label_image");
+  p.dynamic_mask = fromImageMsg(m.dynamic_mask, enc::MONO8, "dynamic_mask");
+  p.instances = fromMsgs<PacketInstance>(m.instances);
+  return p;
+}
+
+MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
+  MapUpdateMsg m;
+  m.header.frame_id = world_frame;
+  m.header.stamp.fromSec(u.stamp);
+  m.stamp = u.stamp;
+  m.keyframes = toMsgs<KeyFramePoseMsg>(u.keyframes);
+  m.points = toMsgs<LandmarkMsg>(u.points);
+  m.lines = toMsgs<Line3DMsg>(u.lines);
+  m.merged_points = toMsgs<LandmarkMergeMsg>(u.merged_points);
+  return m;
+}
+
+MapUpdate fromMsg(const MapUpdateMsg& m) {
+  MapUpdate u;
+  u.stamp = m.stamp;
+  u.keyframes = fromMsgs<MapUpdate::KeyFramePose>(m.keyframes);
+  u.points = fromMsgs<LandmarkPoint>(m.points);
+  u.lines = fromMsgs<LandmarkLine>(m.lines);
+  u.merged_points = fromMsgs<MapUpdate::Merge>(m.merged_points);
+  return u;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,252 @@
+#include "ply_slam/ros/mapping_node.h"
+
+#include <geometry_msgs/PoseArray.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Path.h>
+#include <ply_slam/MapUpdateMsg.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <filesystem>
+
+#include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/ros/conversions.h"
+
+namespace ply_slam {
+namespace {
+
+std::string withoutLeadingSlash(std::string frame) {
+  while (!frame.empty() && frame.front() == '/') frame.erase(frame.begin());
+  return frame;
+}
+
+Eigen::Isometry3d fromTransformMsg(const geometry_msgs::Transform& t) {
+  geometry_msgs::Pose pose;
+  pose.position.x = t.translation.x;
+  pose.position.y = t.translation.y;
+  pose.position.z = t.translation.z;
+  pose.orientation = t.rotation;
+  return fromPoseMsg(pose);
+}
+
+geometry_msgs::TransformStamped toTransformMsg(const Eigen::Isometry3d& T, const ros::Time& stamp,
+                                               const std::string& parent,
+                                               const std::string& child) {
+  const geometry_msgs::Pose pose = toPoseMsg(T);
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = pose.position.x;
+  t.transform.translation.y = pose.position.y;
+  t.transform.translation.z = pose.position.z;
+  t.transform.rotation = pose.orientation;
+  return t;
+}
+
+}  // namespace
+
+MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
+  map_frame_ = withoutLeadingSlash(pnh_.param<std::string>("map_frame", "map"));
+  world_frame_ = withoutLeadingSlash(pnh_.param<std::string>("world_frame", map_frame_));
+  odom_frame_ = withoutLeadingSlash(pnh_.param<std::string>("odom_frame", ""));
+  camera_frame_ =
+      withoutLeadingSlash(pnh_.param<std::string>("camera_frame", "camera_color_optical_frame"));
+
+  // A fixed placement of the SLAM world in the map frame, e.g. to show the optical-frame world of
+  // a TUM bag upright: x y z (m) yaw pitch roll (rad), as tf2_ros static_transform_publisher.
+  std::vector<double> world_in_map;
+  if (pnh_.getParam("world_in_map", world_in_map) && odom_frame_.empty() &&
+      world_frame_ != map_frame_) {
+    if (world_in_map.size() != 6)
+      throw std::invalid_argument("~world_in_map needs 6 numbers: x y z yaw pitch roll");
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(world_in_map[0], world_in_map[1], world_in_map[2]);
+    T.linear() = (Eigen::AngleAxisd(world_in_map[3], Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(world_in_map[4], Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(world_in_map[5], Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    static_broadcaster_.sendTransform(
+        toTransformMsg(T, ros::Time::now(), map_frame_, world_frame_));
+  }
+
+  points_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("map_points", 1, true);
+  lines_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("map_lines", 1, true);
+  keyframes_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("keyframes", 1, true);
+  path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
+  update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 10);
+  // Dense cloud and octree (issue #7): ~dense_cloud, ~octomap_markers, ~octomap_cloud.
+
+  keyframe_sub_ = nh_.subscribe(pnh_.param<std::string>("keyframe_topic", "tracking_node/keyframe"),
+                                100, &MappingNode::onKeyFrame, this);
+  pose_sub_ = nh_.subscribe(pnh_.param<std::string>("pose_topic", "tracking_node/pose"), 100,
+                            &MappingNode::onPose, this);
+  save_trajectory_srv_ =
+      pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
+  save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
+  ROS_INFO_STREAM("mapping_node: keyframes from "
+                  << keyframe_sub_.getTopic() << ", poses from " << pose_sub_.getTopic() << "; tf "
+                  << (odom_frame_.empty() ? world_frame_ + " -> " + camera_frame_
+                                          : map_frame_ + " -> " + odom_frame_));
+}
+
+void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
+  KeyFramePacket packet;
+  try {
+    packet = fromMsg(*msg);
+  } catch (const std::exception& e) {
+    bad_input_.report("keyframe", e.what());
+    return;
+  }
+  // Dense maps (issue #7) take the packet's images here, before the store drops them.
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!store_.insert(packet)) {
+      bad_input_.report("keyframe", "keyframe " + std::to_string(packet.id) + " is out of date");
+      return;
+    }
+  }
+  // Local bundle adjustment and loop closure (later issue) go here: run them on the store's
+  // keyframes and landmarks, apply the result with store_.apply(update) and send it to the
+  // tracker: update_pub_.publish(toMsg(update, world_frame_)). Today the tracking process still
+  // runs local BA in line (System), so there are no corrections to send yet.
+  publishMap(msg->header.stamp);
+}
+
+void MappingNode::onPose(const geometry_msgs::PoseStampedConstPtr& msg) {
+  Eigen::Isometry3d T_world_camera;
+  try {
+    T_world_camera = fromPoseMsg(msg->pose);
+  } catch (const std::exception& e) {
+    bad_input_.report("pose", e.what());
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    camera_trajectory_.push_back({msg->header.stamp.toSec(), T_world_camera});
+  }
+  broadcastTf(msg->header.stamp, T_world_camera);
+}
+
+// Without odometry the camera hangs from the world frame. With it (a robot), `map` starts where
+// odometry starts: T_map_world is the camera's pose in odom at the first tracked frame (the
+// robot's camera mounting comes in through its tf tree), and map -> odom absorbs the drift.
+void MappingNode::broadcastTf(const ros::Time& stamp, const Eigen::Isometry3d& T_world_camera) {
+  if (odom_frame_.empty()) {
+    tf_broadcaster_.sendTransform(
+        toTransformMsg(T_world_camera, stamp, world_frame_, camera_frame_));
+    return;
+  }
+  Eigen::Isometry3d T_odom_camera;
+  try {
+    T_odom_camera =
+        fromTransformMsg(tf_buffer_.lookupTransform(odom_frame_, camera_frame_, stamp).transform);
+  } catch (const tf2::TransformException& e) {
+    bad_input_.report("tf", std::string("no odom -> camera transform: ") + e.what());
+    return;
+  }
+  if (!T_map_world_) {
+    T_map_world_ = T_odom_camera * T_world_camera.inverse();
+    if (world_frame_ != map_frame_)
+      static_broadcaster_.sendTransform(
+          toTransformMsg(*T_map_world_, stamp, map_frame_, world_frame_));
+  }
+  const Eigen::Isometry3d T_map_odom = *T_map_world_ * T_world_camera * T_odom_camera.inverse();
+  tf_broadcaster_.sendTransform(toTransformMsg(T_map_odom, stamp, map_frame_, odom_frame_));
+}
+
+void MappingNode::publishMap(const ros::Time& stamp) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = world_frame_;
+
+  sensor_msgs::PointCloud2 cloud;
+  cloud.header = header;
+  sensor_msgs::PointCloud2Modifier modifier(cloud);
+  modifier.setPointCloud2FieldsByString(1, "xyz");
+  modifier.resize(store_.points().size());
+  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z");
+  for (const auto& [id, p] : store_.points()) {
+    *x = static_cast<float>(p.position.x());
+    *y = static_cast<float>(p.position.y());
+    *z = static_cast<float>(p.position.z());
+    ++x, ++y, ++z;
+  }
+  points_pub_.publish(cloud);
+
+  visualization_msgs::Marker lines;
+  lines.header = header;
+  lines.ns = "map_lines";
+  lines.type = visualization_msgs::Marker::LINE_LIST;
+  lines.action = visualization_msgs::Marker::ADD;
+  lines.pose.orientation.w = 1.0;
+  lines.scale.x = 0.01;
+  lines.color.r = 0.1f;
+  lines.color.g = 0.6f;
+  lines.color.b = 1.0f;
+  lines.color.a = 1.0f;
+  for (const auto& [id, l] : store_.lines()) {
+    geometry_msgs::Point a, b;
+    a.x = l.start.x(), a.y = l.start.y(), a.z = l.start.z();
+    b.x = l.end.x(), b.y = l.end.y(), b.z = l.end.z();
+    lines.points.push_back(a);
+    lines.points.push_back(b);
+  }
+  if (lines.points.empty()) lines.action = visualization_msgs::Marker::DELETEALL;  // none yet
+  visualization_msgs::MarkerArray markers;
+  markers.markers.push_back(lines);
+  lines_pub_.publish(markers);
+
+  geometry_msgs::PoseArray keyframes;
+  keyframes.header = header;
+  nav_msgs::Path path;
+  path.header = header;
+  for (const auto& [id, kf] : store_.keyFrames()) {
+    keyframes.poses.push_back(toPoseMsg(kf.T_wc));
+    geometry_msgs::PoseStamped pose;
+    pose.header.frame_id = world_frame_;
+    pose.header.stamp.fromSec(kf.stamp);
+    pose.pose = keyframes.poses.back();
+    path.poses.push_back(pose);
+  }
+  keyframes_pub_.publish(keyframes);
+  path_pub_.publish(path);
+}
+
+bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  try {
+    if (camera_trajectory_.empty()) throw std::runtime_error("no tracked frame yet");
+    writeTumTrajectory(request.path, camera_trajectory_);
+    response.success = true;
+    response.message = std::to_string(camera_trajectory_.size()) + " poses to " + request.path;
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = e.what();
+  }
+  ROS_INFO_STREAM("save_trajectory: " << response.message);
+  return true;
+}
+
+bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  try {
+    store_.save(request.path);
+    writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
+                       camera_trajectory_);
+    response.success = true;
+    response.message = std::to_string(store_.keyFrames().size()) + " keyframes, " +
+                       std::to_string(store_.points().size()) + " points, " +
+                       std::to_string(store_.lines().size()) + " lines to " + request.path;
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = e.what();
+  }
+  ROS_INFO_STREAM("save_map: " << response.message);
+  return true;
+}
+
+}  // namespace ply_slam

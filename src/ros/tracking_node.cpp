@@ -1,0 +1,300 @@
+#include "ply_slam/ros/tracking_node.h"
+
+#include <cv_bridge/cv_bridge.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <ply_slam/KeyFrameMsg.h>
+#include <std_msgs/String.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "ply_slam/ros/config_from_params.h"
+#include "ply_slam/ros/conversions.h"
+#include "ply_slam/semantic/live_segmenter.h"
+#include "ply_slam/semantic/segmentation_image.h"
+#include "ply_slam/semantic/yolo_v8_seg.h"
+#include "ply_slam/system/tracking_image.h"
+
+namespace ply_slam {
+namespace {
+
+// Intrinsics and size from camera_info replace the config's (plumb_bob / rational_polynomial
+// distortion: the first five coefficients are OpenCV's k1 k2 p1 p2 k3).
+void applyCameraInfo(const sensor_msgs::CameraInfo& info, PinholeCamera& camera) {
+  camera.fx = info.K[0];
+  camera.fy = info.K[4];
+  camera.cx = info.K[2];
+  camera.cy = info.K[5];
+  camera.width = static_cast<int>(info.width);
+  camera.height = static_cast<int>(info.height);
+  cv::Mat d = cv::Mat::zeros(1, 5, CV_64F);
+  for (size_t i = 0; i < std::min<size_t>(5, info.D.size()); ++i) d.at<double>(0, i) = info.D[i];
+  camera.distortion = d;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh),
+      pnh_(pnh),
+      config_(configFromParams(pnh, "config")),
+      decoder_(pnh.param("depth_16u_scale", 0.001)) {
+  use_camera_info_ = pnh_.param("use_camera_info", true);
+  publish_images_ = pnh_.param("publish_images", true);
+  world_frame_ = pnh_.param<std::string>("world_frame", "map");
+  frame_queue_size_ = static_cast<size_t>(std::max(1, pnh_.param("frame_queue_size", 100)));
+  const int sync_queue = std::max(1, pnh_.param("sync_queue_size", 10));
+  sync_slop_ = pnh_.param("sync_slop", 0.02);
+  flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
+
+  if (!config_.segmentation.model_path.empty()) {
+    // Live mode (DESIGN.md): the network runs beside tracking on the newest frame; tracking
+    // takes its newest result carried to the current frame and never waits for it.
+    segmenter_ = std::make_unique<LiveSegmenter>(std::make_unique<YoloV8Seg>(config_.segmentation));
+    ROS_INFO_STREAM("segmentation: YOLOv8-seg " << config_.segmentation.model_path << ", live");
+  } else {
+    ROS_INFO("segmentation: none (config segmentation.model is empty)");
+  }
+
+  pose_pub_ = pnh_.advertise<geometry_msgs::PoseStamped>("pose", 10);
+  path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
+  keyframe_pub_ = pnh_.advertise<KeyFrameMsg>("keyframe", 100);
+  stats_pub_ = pnh_.advertise<std_msgs::String>("stats", 1, true);
+  tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
+  segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
+
+  rgb_sub_.subscribe(nh_, pnh_.param<std::string>("rgb_topic", "rgb/image"), sync_queue);
+  depth_sub_.subscribe(nh_, pnh_.param<std::string>("depth_topic", "depth/image"), sync_queue);
+  rgb_sub_.registerCallback(&TrackingNode::onRgb, this);
+  depth_sub_.registerCallback(&TrackingNode::onDepth, this);
+  sync_ = std::make_unique<message_filters::Synchronizer<SyncPolicy>>(SyncPolicy(sync_queue),
+                                                                      rgb_sub_, depth_sub_);
+  sync_->setMaxIntervalDuration(ros::Duration(sync_slop_));
+  // The shortest time between two images of one stream: lets the synchroniser emit a pair as
+  // soon as no later message could pair better, instead of waiting for the next frame (the
+  // last frame of a bag would otherwise never be emitted). 0 = unknown.
+  const double min_period = pnh_.param("sync_min_period", 0.0);
+  if (min_period > 0) {
+    sync_->setInterMessageLowerBound(0, ros::Duration(min_period));
+    sync_->setInterMessageLowerBound(1, ros::Duration(min_period));
+  }
+  sync_->registerCallback(&TrackingNode::onImages, this);
+  info_sub_ = nh_.subscribe(pnh_.param<std::string>("camera_info_topic", "rgb/camera_info"), 1,
+                            &TrackingNode::onCameraInfo, this);
+  update_sub_ =
+      nh_.subscribe(pnh_.param<std::string>("map_update_topic", "mapping_node/map_update"), 10,
+                    &TrackingNode::onMapUpdate, this);
+  if (flush_after_s_ > 0)
+    flush_timer_ = nh_.createWallTimer(ros::WallDuration(flush_after_s_ / 2),
+                                       [this](const ros::WallTimerEvent&) { flushStalledPair(); });
+  worker_ = std::thread(&TrackingNode::work, this);
+  ROS_INFO_STREAM("tracking_node: config "
+                  << config_.source_path << ", rgb " << rgb_sub_.getTopic() << ", depth "
+                  << depth_sub_.getTopic() << ", camera_info " << info_sub_.getTopic()
+                  << (use_camera_info_ ? "" : " (ignored)") << ", sync queue " << sync_queue
+                  << " slop " << sync_slop_ << " s");
+}
+
+TrackingNode::~TrackingNode() {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    stopping_ = true;
+  }
+  queue_cv_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  const size_t paired = synchronised_;
+  ROS_INFO_STREAM("tracking_node: rgb "
+                  << rgb_received_ << ", depth " << depth_received_ << ", synchronised " << paired
+                  << " (unpaired rgb " << rgb_received_ - std::min<size_t>(rgb_received_, paired)
+                  << ", depth " << depth_received_ - std::min<size_t>(depth_received_, paired)
+                  << "), tracked " << tracked_ << ", lost " << lost_ << ", dropped while behind "
+                  << behind_dropped_ << ", skipped bad " << bad_input_.total() << " ("
+                  << bad_input_.summary() << "), median " << median(total_ms_) << " ms per frame");
+}
+
+void TrackingNode::onRgb(const sensor_msgs::ImageConstPtr& rgb) {
+  ++rgb_received_;
+  newest_rgb_ = rgb;
+  newest_arrival_ = ros::WallTime::now();
+}
+
+void TrackingNode::onDepth(const sensor_msgs::ImageConstPtr& depth) {
+  ++depth_received_;
+  newest_depth_ = depth;
+  newest_arrival_ = ros::WallTime::now();
+}
+
+void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
+                            const sensor_msgs::ImageConstPtr& depth) {
+  if (!last_paired_rgb_stamp_.isZero() && rgb->header.stamp <= last_paired_rgb_stamp_ &&
+      flushed_ > 0)
+    return;  // already tracked by flushStalledPair
+  last_paired_rgb_stamp_ = std::max(last_paired_rgb_stamp_, rgb->header.stamp);
+  last_paired_depth_stamp_ = std::max(last_paired_depth_stamp_, depth->header.stamp);
+  ++synchronised_;
+  enqueue({rgb, depth, nullptr});
+}
+
+// Runs on the spinner thread like the subscriber callbacks, so it needs no lock of its own.
+void TrackingNode::flushStalledPair() {
+  if (!newest_rgb_ || !newest_depth_) return;
+  if ((ros::WallTime::now() - newest_arrival_).toSec() < flush_after_s_) return;
+  if (newest_rgb_->header.stamp <= last_paired_rgb_stamp_ ||
+      newest_depth_->header.stamp <= last_paired_depth_stamp_)
+    return;
+  if (std::abs((newest_rgb_->header.stamp - newest_depth_->header.stamp).toSec()) > sync_slop_)
+    return;
+  ++flushed_;
+  onImages(newest_rgb_, newest_depth_);
+}
+
+void TrackingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& update) {
+  enqueue({nullptr, nullptr, update});
+}
+
+void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
+  std::lock_guard<std::mutex> lock(info_mutex_);
+  camera_info_ = info;
+}
+
+// Frames wait here for the worker; when it falls this far behind the oldest frame goes (a live
+// camera cannot wait), map updates are never dropped.
+void TrackingNode::enqueue(Job job) {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    const auto frames =
+        std::count_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
+    if (job.rgb && static_cast<size_t>(frames) >= frame_queue_size_) {
+      const auto oldest =
+          std::find_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
+      queue_.erase(oldest);
+      ++behind_dropped_;
+      bad_input_.report("behind", "tracking is behind; dropped the oldest waiting frame");
+    }
+    queue_.push_back(std::move(job));
+  }
+  queue_cv_.notify_one();
+}
+
+void TrackingNode::work() {
+  while (true) {
+    Job job;
+    {
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      queue_cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;  // shutting down: frames still waiting are not tracked
+      job = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    try {
+      if (job.update) {
+        if (system_) {
+          system_->applyMapUpdate(fromMsg(*job.update));
+          ++updates_;
+        }
+      } else {
+        track(*job.rgb, *job.depth);
+      }
+    } catch (const BadRgbdMessage& e) {
+      bad_input_.report(e.kind(), e.what());
+    } catch (const InvalidFrame& e) {
+      bad_input_.report("invalid_frame", e.what());
+    } catch (const std::exception& e) {  // a malformed map update, a segmenter failure
+      bad_input_.report("error", e.what());
+    }
+    publishStats();
+  }
+}
+
+void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
+  SystemConfig config = config_;
+  if (info && info->K[0] > 0) {
+    applyCameraInfo(*info, config.camera);
+    ROS_INFO_STREAM("intrinsics from camera_info: fx "
+                    << config.camera.fx << " fy " << config.camera.fy << " cx " << config.camera.cx
+                    << " cy " << config.camera.cy << ", " << config.camera.width << "x"
+                    << config.camera.height);
+  } else {
+    ROS_INFO_STREAM("intrinsics from the config: fx "
+                    << config.camera.fx << " fy " << config.camera.fy << " cx " << config.camera.cx
+                    << " cy " << config.camera.cy);
+  }
+  system_ = std::make_unique<System>(config);
+}
+
+void TrackingNode::track(const Image& rgb, const Image& depth) {
+  sensor_msgs::CameraInfoConstPtr info;
+  if (use_camera_info_) {
+    std::lock_guard<std::mutex> lock(info_mutex_);
+    info = camera_info_;
+  }
+  const RgbdImages images = decoder_.decode(rgb, depth, info.get());
+  if (!system_) startSystem(info.get());
+  std::vector<Instance> instances;
+  if (segmenter_) {
+    segmenter_->submit(images);
+    instances = segmenter_->instancesFor(images);
+  }
+  const FrameResult result = system_->process(images, instances);
+  if (total_ms_.size() >= 2000)  // the median is over recent frames; a live run has no end
+    total_ms_.erase(total_ms_.begin(), total_ms_.begin() + 1000);
+  total_ms_.push_back(result.timing.total_ms);
+  if (result.tracking.state == TrackingState::kOk)
+    ++tracked_;
+  else
+    ++lost_;
+  publish(rgb, images, instances, result);
+}
+
+void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
+                           const std::vector<Instance>& instances, const FrameResult& result) {
+  std_msgs::Header header;
+  header.stamp = rgb.header.stamp;
+  header.frame_id = world_frame_;
+  if (result.tracking.state == TrackingState::kOk) {
+    geometry_msgs::PoseStamped pose;
+    pose.header = header;
+    pose.pose = toPoseMsg(result.tracking.T_cw.inverse());
+    pose_pub_.publish(pose);
+    path_.header = header;
+    path_.poses.push_back(pose);
+    path_pub_.publish(path_);
+  }
+  if (result.keyframe_packet) {
+    keyframe_pub_.publish(toMsg(*result.keyframe_packet, world_frame_));
+    ++keyframes_;
+  }
+  if (!publish_images_) return;
+  std_msgs::Header image_header = rgb.header;
+  if (tracking_image_pub_.getNumSubscribers() > 0)
+    tracking_image_pub_.publish(
+        cv_bridge::CvImage(image_header, "bgr8", drawTrackingImage(images.rgb, result, instances))
+            .toImageMsg());
+  if (segmentation_image_pub_.getNumSubscribers() > 0)
+    segmentation_image_pub_.publish(
+        cv_bridge::CvImage(image_header, "bgr8",
+                           drawSegmentationImage(images.rgb, instances, result.dynamic_instances))
+            .toImageMsg());
+}
+
+void TrackingNode::publishStats() {
+  std::ostringstream s;
+  s << "rgb_received=" << rgb_received_ << " depth_received=" << depth_received_
+    << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
+    << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
+    << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
+    << " median_ms=" << median(total_ms_);
+  const std::string kinds = bad_input_.summary();
+  if (!kinds.empty()) s << " " << kinds;
+  std_msgs::String msg;
+  msg.data = s.str();
+  stats_pub_.publish(msg);
+}
+
+}  // namespace ply_slam

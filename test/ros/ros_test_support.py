@@ -1,0 +1,123 @@
+"""Shared pieces of the rostest integration tests: where the shared data is, offline reference
+runs, bag conversion, the tracking node's statistics and the mapper's save service."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rospkg
+import rospy
+from roslib.packages import find_node
+from std_msgs.msg import String
+
+PACKAGE_DIR = rospkg.RosPack().get_path("ply_slam")
+STATS_TOPIC = "/ply_slam/tracking_node/stats"
+SAVE_TRAJECTORY = "/ply_slam/mapping_node/save_trajectory"
+
+
+def shared_path(relative):
+    """$PLY_SLAM_SHARED/relative, else ../shared beside the repository. Missing: the test fails
+    under CI=true and is skipped otherwise (as test/shared_data.h does for the gtests)."""
+    root = os.environ.get("PLY_SLAM_SHARED") or os.path.join(
+        os.path.dirname(os.path.realpath(PACKAGE_DIR)), "shared")
+    path = os.path.join(root, relative)
+    if not os.path.exists(path):
+        if os.environ.get("CI") == "true":
+            raise AssertionError("CI=true but shared data is missing: " + path)
+        raise unittest.SkipTest("shared data missing: %s (set PLY_SLAM_SHARED)" % path)
+    return path
+
+
+def tool(name):
+    found = find_node("ply_slam", name)
+    if not found:
+        raise AssertionError("cannot find the %s executable (build the package first)" % name)
+    return found[0]
+
+
+def work_dir():
+    return tempfile.mkdtemp(prefix="ply_slam_rostest_")
+
+
+def tum_to_bag(sequence, bag, d435i=False):
+    command = ["/usr/bin/python3", os.path.join(PACKAGE_DIR, "scripts", "tum_to_bag.py"),
+               sequence, bag] + (["--d435i"] if d435i else [])
+    subprocess.run(command, check=True)
+
+
+def ate_rmse(sequence, trajectory):
+    out = subprocess.run([tool("ply_slam_eval"), "ate", os.path.join(sequence, "groundtruth.txt"),
+                          trajectory, "--json"], check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def offline_run(sequence, out_dir):
+    """ply_slam_tum on the same frames with the same config: the reference the nodes must meet.
+    Returns (frames tracked, ATE RMSE)."""
+    config = os.path.join(PACKAGE_DIR, "config", "tum_fr1.yaml")
+    subprocess.run([tool("ply_slam_tum"), "--sequence", sequence, "--config", config, "--out",
+                    out_dir], check=True, capture_output=True)
+    ate = ate_rmse(sequence, os.path.join(out_dir, "CameraTrajectory.txt"))
+    return ate["pairs"], ate["rmse"]
+
+
+class StatsListener:
+    """The tracking node's latched ~stats ("key=value ..."), newest first."""
+
+    def __init__(self):
+        self.values = {}
+        self.sub = rospy.Subscriber(STATS_TOPIC, String, self._on_stats)
+
+    def _on_stats(self, msg):
+        values = {}
+        for field in msg.data.split():
+            key, _, value = field.partition("=")
+            values[key] = float(value)
+        self.values = values
+
+    def get(self, key):
+        return self.values.get(key, 0)
+
+    def wait_until(self, condition, timeout):
+        deadline = time.time() + timeout
+        while time.time() < deadline and not rospy.is_shutdown():
+            if condition(self):
+                return True
+            time.sleep(0.1)
+        return condition(self)
+
+
+def import_service_type():
+    """ply_slam.srv.SaveToPath. catkin caches the environment of a fresh workspace before the
+    generated Python messages exist, so under ctest PYTHONPATH can lack them: add the devel
+    space's dist-packages, found beside our executables."""
+    devel = os.path.dirname(os.path.dirname(os.path.dirname(tool("ply_slam_tum"))))
+    packages = os.path.join(devel, "lib", "python3", "dist-packages")
+    if os.path.isdir(packages) and packages not in sys.path:
+        sys.path.insert(0, packages)
+    from ply_slam.srv import SaveToPath
+    return SaveToPath
+
+
+def save_trajectory(path):
+    SaveToPath = import_service_type()
+    rospy.wait_for_service(SAVE_TRAJECTORY, timeout=30)
+    response = rospy.ServiceProxy(SAVE_TRAJECTORY, SaveToPath)(path)
+    if not response.success:
+        raise AssertionError("save_trajectory failed: " + response.message)
+    return response.message
+
+
+def wait_for_nodes(timeout=30):
+    """Both nodes are up: the mapper's service exists and the tracker's subscribers are there."""
+    rospy.wait_for_service(SAVE_TRAJECTORY, timeout=timeout)
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        nodes = subprocess.run(["rosnode", "list"], capture_output=True, text=True).stdout
+        if "/ply_slam/tracking_node" in nodes:
+            return
+        time.sleep(0.2)
+    raise AssertionError("tracking_node did not come up")

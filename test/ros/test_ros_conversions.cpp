@@ -1,0 +1,161 @@
+// Round trips of the tracker <-> mapper structs through their ROS messages, serialised as on
+// the wire: every field must come back as it went.
+#include <gtest/gtest.h>
+#include <ros/serialization.h>
+
+#include "ply_slam/ros/conversions.h"
+
+namespace ply_slam {
+namespace {
+
+template <typename M>
+M throughWire(const M& msg) {
+  namespace ser = ros::serialization;
+  std::vector<uint8_t> buffer(ser::serializationLength(msg));
+  ser::OStream out(buffer.data(), buffer.size());
+  ser::serialize(out, msg);
+  M back;
+  ser::IStream in(buffer.data(), buffer.size());
+  ser::deserialize(in, back);
+  return back;
+}
+
+Eigen::Isometry3d somePose(double a) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(a, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(a, -2 * a, 0.3);
+  return T;
+}
+
+void expectSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  EXPECT_LT((a.matrix() - b.matrix()).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+bool sameImage(const cv::Mat& a, const cv::Mat& b) {
+  return a.type() == b.type() && a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
+KeyFramePacket fullPacket() {
+  KeyFramePacket p;
+  p.id = 7;
+  p.frame_id = 42;
+  p.stamp = 1305031234.529645;
+  p.T_wc = somePose(0.7);
+  p.camera.fx = 517.3, p.camera.fy = 516.5, p.camera.cx = 318.6, p.camera.cy = 255.3;
+  p.camera.width = 64, p.camera.height = 48;
+  p.camera.distortion = (cv::Mat_<double>(1, 5) << 0.26, -0.95, -0.005, 0.002, 1.16);
+  p.camera.depth_factor = 5000, p.camera.min_depth = 0.3, p.camera.max_depth = 6;
+  p.camera.depth_noise = {2.5e-5, 1e-6, 1e-5};
+  p.camera.rolling_shutter_readout = 0.02;
+  cv::RNG rng(3);
+  p.descriptors = cv::Mat(5, 32, CV_8U);
+  rng.fill(p.descriptors, cv::RNG::UNIFORM, 0, 256);
+  for (int i = 0; i < 5; ++i) {
+    p.keypoints.emplace_back(10.25 * i, 3.5 + i);
+    p.keypoint_depth.push_back(i == 2 ? 0.f : 0.5f + i);
+    p.keypoint_level.push_back(i % 3);
+    p.keypoint_landmark.push_back(i == 1 ? -1 : 100 + i);
+  }
+  p.points = {{100, {1, 2, 3}}, {103, {-1, 0.5, 2.25}}};
+  p.lines = {{9, {0, 0, 1}, {1, 0, 1}}};
+  p.rgb = cv::Mat(48, 64, CV_8UC3);
+  rng.fill(p.rgb, cv::RNG::UNIFORM, 0, 256);
+  p.depth = cv::Mat(48, 64, CV_32F);
+  rng.fill(p.depth, cv::RNG::UNIFORM, 0.0, 5.0);
+  p.label_image = cv::Mat::zeros(48, 64, CV_16U);
+  p.label_image(cv::Rect(5, 5, 10, 10)) = 3;
+  p.instances = {{3, "person", 0.9f, true}, {4, "chair", 0.6f, false}};
+  p.dynamic_mask = cv::Mat::zeros(48, 64, CV_8U);
+  p.dynamic_mask(cv::Rect(4, 4, 12, 12)) = 255;
+  return p;
+}
+
+TEST(RosConversions, KeyFramePacketRoundTrip) {
+  const KeyFramePacket p = fullPacket();
+  const KeyFrameMsg msg = throughWire(toMsg(p, "map"));
+  EXPECT_EQ(msg.header.frame_id, "map");
+  const KeyFramePacket q = fromMsg(msg);
+  EXPECT_EQ(q.id, p.id);
+  EXPECT_EQ(q.frame_id, p.frame_id);
+  EXPECT_EQ(q.stamp, p.stamp);
+  expectSamePose(q.T_wc, p.T_wc);
+  EXPECT_EQ(q.camera.fx, p.camera.fx);
+  EXPECT_EQ(q.camera.cy, p.camera.cy);
+  EXPECT_EQ(q.camera.width, p.camera.width);
+  EXPECT_TRUE(sameImage(q.camera.distortion, p.camera.distortion));
+  EXPECT_EQ(q.camera.depth_noise.beta, p.camera.depth_noise.beta);
+  EXPECT_EQ(q.camera.rolling_shutter_readout, p.camera.rolling_shutter_readout);
+  EXPECT_EQ(q.camera.max_depth, p.camera.max_depth);
+  EXPECT_EQ(q.keypoints, p.keypoints);
+  EXPECT_EQ(q.keypoint_depth, p.keypoint_depth);
+  EXPECT_EQ(q.keypoint_level, p.keypoint_level);
+  EXPECT_EQ(q.keypoint_landmark, p.keypoint_landmark);
+  EXPECT_TRUE(sameImage(q.descriptors, p.descriptors));
+  ASSERT_EQ(q.points.size(), 2u);
+  EXPECT_EQ(q.points[1].id, 103);
+  EXPECT_EQ(q.points[1].position, p.points[1].position);
+  ASSERT_EQ(q.lines.size(), 1u);
+  EXPECT_EQ(q.lines[0].end, p.lines[0].end);
+  EXPECT_TRUE(sameImage(q.rgb, p.rgb));
+  EXPECT_TRUE(sameImage(q.depth, p.depth));
+  EXPECT_TRUE(sameImage(q.label_image, p.label_image));
+  EXPECT_TRUE(sameImage(q.dynamic_mask, p.dynamic_mask));
+  ASSERT_EQ(q.instances.size(), 2u);
+  EXPECT_EQ(q.instances[0].class_name, "person");
+  EXPECT_TRUE(q.instances[0].dynamic);
+  EXPECT_FALSE(q.instances[1].dynamic);
+  EXPECT_EQ(q.instances[1].score, 0.6f);
+}
+
+TEST(RosConversions, EmptyImagesStayEmpty) {
+  KeyFramePacket p = fullPacket();
+  p.label_image.release();
+  p.dynamic_mask.release();
+  p.instances.clear();
+  const KeyFramePacket q = fromMsg(throughWire(toMsg(p, "map")));
+  EXPECT_TRUE(q.label_image.empty());
+  EXPECT_TRUE(q.dynamic_mask.empty());
+  EXPECT_TRUE(q.instances.empty());
+}
+
+TEST(RosConversions, InconsistentKeyFrameIsRejected) {
+  KeyFrameMsg msg = toMsg(fullPacket(), "map");
+  msg.descriptors.pop_back();
+  EXPECT_THROW(fromMsg(msg), std::invalid_argument);
+  msg = toMsg(fullPacket(), "map");
+  msg.T_wc.orientation.w = msg.T_wc.orientation.x = msg.T_wc.orientation.y =
+      msg.T_wc.orientation.z = 0;
+  EXPECT_THROW(fromMsg(msg), std::invalid_argument);
+  msg = toMsg(fullPacket(), "map");
+  msg.depth.encoding = "16UC1";
+  EXPECT_THROW(fromMsg(msg), std::invalid_argument);
+}
+
+TEST(RosConversions, MapUpdateRoundTrip) {
+  MapUpdate u;
+  u.stamp = 12.5;
+  u.keyframes = {{1, somePose(0.1)}, {4, somePose(-2.0)}};
+  u.points = {{11, {0.1, 0.2, 0.3}}};
+  u.lines = {{5, {1, 1, 1}, {2, 2, 2}}};
+  u.merged_points = {{11, 12}, {13, 14}};
+  const MapUpdate v = fromMsg(throughWire(toMsg(u, "map")));
+  EXPECT_EQ(v.stamp, u.stamp);
+  ASSERT_EQ(v.keyframes.size(), 2u);
+  EXPECT_EQ(v.keyframes[1].id, 4);
+  expectSamePose(v.keyframes[1].T_wc, u.keyframes[1].T_wc);
+  ASSERT_EQ(v.points.size(), 1u);
+  EXPECT_EQ(v.points[0].position, u.points[0].position);
+  ASSERT_EQ(v.lines.size(), 1u);
+  EXPECT_EQ(v.lines[0].start, u.lines[0].start);
+  ASSERT_EQ(v.merged_points.size(), 2u);
+  EXPECT_EQ(v.merged_points[1].from, 13);
+  EXPECT_EQ(v.merged_points[1].to, 14);
+}
+
+}  // namespace
+}  // namespace ply_slam
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
