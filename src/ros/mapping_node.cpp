@@ -10,8 +10,11 @@
 
 #include <filesystem>
 
+#include "ply_slam/dense/map_export.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
+#include "ply_slam/ros/dense_map_messages.h"
 
 namespace ply_slam {
 namespace {
@@ -77,7 +80,19 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   keyframes_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("keyframes", 1, true);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
   update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 10);
-  // Dense cloud and octree (issue #7): ~dense_cloud, ~octomap_markers, ~octomap_cloud.
+  // Dense cloud and octree (issue #7): built on the worker's thread from the keyframes'
+  // images, published every ~dense_publish_period seconds. Settings: the config's dense section.
+  const SystemConfig config = pnh_.hasParam("config") ? configFromParams(pnh_) : SystemConfig();
+  if (config.dense.enabled) {
+    dense_ = std::make_unique<DenseMappingWorker>(config.dense);
+    dense_cloud_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
+    octomap_markers_pub_ =
+        pnh_.advertise<visualization_msgs::MarkerArray>("octomap_markers", 1, true);
+    octomap_cloud_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("octomap_cloud", 1, true);
+    const double period = pnh_.param("dense_publish_period", 2.0);
+    if (!(period > 0.0)) throw std::invalid_argument("~dense_publish_period must be > 0 s");
+    dense_timer_ = nh_.createTimer(ros::Duration(period), &MappingNode::publishDense, this);
+  }
 
   keyframe_sub_ = nh_.subscribe(pnh_.param<std::string>("keyframe_topic", "tracking_node/keyframe"),
                                 100, &MappingNode::onKeyFrame, this);
@@ -100,7 +115,8 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
     bad_input_.report("keyframe", e.what());
     return;
   }
-  // Dense maps (issue #7) take the packet's images here, before the store drops them.
+  // The dense maps take the packet's images (the store keeps none); push only queues.
+  if (dense_) dense_->push(std::make_shared<const KeyFramePacket>(packet));
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!store_.insert(packet)) {
@@ -231,10 +247,31 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
   return true;
 }
 
+void MappingNode::publishDense(const ros::TimerEvent&) {
+  if (dense_cloud_pub_.getNumSubscribers() + octomap_markers_pub_.getNumSubscribers() +
+          octomap_cloud_pub_.getNumSubscribers() ==
+      0)
+    return;
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  header.frame_id = world_frame_;
+  dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
+    if (dense_cloud_pub_.getNumSubscribers() > 0)
+      dense_cloud_pub_.publish(toDenseCloudMsg(*map.globalCloud(), header));
+    const auto voxels = octree.occupiedVoxels();
+    octomap_markers_pub_.publish(toVoxelMarkers(voxels, header));
+    octomap_cloud_pub_.publish(toVoxelCloudMsg(voxels, header));
+  });
+}
+
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
   try {
     store_.save(request.path);
+    if (dense_)
+      dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
+        writeDenseMaps(request.path, map, octree);
+      });
     writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
                        camera_trajectory_);
     response.success = true;

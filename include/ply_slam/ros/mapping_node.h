@@ -13,15 +13,16 @@
 #include <optional>
 
 #include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/ros/bad_input_log.h"
 
 namespace ply_slam {
 
 // ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps the map from the tracker's
-// keyframes (MapStore), shows it (points, lines, keyframes, path), broadcasts tf and saves
-// trajectory and map on request. Local bundle adjustment still runs inside the tracking
-// process (System); see onKeyFrame for where it and loop closure will go.
+// keyframes (MapStore), shows it (points, lines, keyframes, path, dense cloud, semantic octree),
+// broadcasts tf and saves trajectory and maps on request. Local bundle adjustment still runs inside
+// the tracking process (System); see onKeyFrame for where it and loop closure will go.
 class MappingNode {
  public:
   MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
@@ -32,6 +33,7 @@ class MappingNode {
   bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   void publishMap(const ros::Time& stamp);
+  void publishDense(const ros::TimerEvent& event);
   void broadcastTf(const ros::Time& stamp, const Eigen::Isometry3d& T_world_camera);
 
   ros::NodeHandle nh_, pnh_;
@@ -45,6 +47,11 @@ class MappingNode {
   ros::Subscriber keyframe_sub_, pose_sub_;
   ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_, update_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
+
+  // Dense cloud and semantic octree (issue #7), on their own thread; null when disabled.
+  std::unique_ptr<DenseMappingWorker> dense_;
+  ros::Publisher dense_cloud_pub_, octomap_markers_pub_, octomap_cloud_pub_;
+  ros::Timer dense_timer_;
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
