@@ -25,7 +25,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/features/frame_lines.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
@@ -82,14 +84,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  const size_t k = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  if (v.size() % 2) return v[k];
-  const double upper = v[k];
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + k));
-}
+double medianOrNan(const std::vector<double>& v) { return v.empty() ? std::nan("") : median(v); }
 
 double mean(const std::vector<double>& v) {
   if (v.empty()) return std::nan("");
@@ -103,27 +98,6 @@ double fraction(const std::vector<double>& v, double limit) {
   return static_cast<double>(
              std::count_if(v.begin(), v.end(), [&](double x) { return x <= limit; })) /
          v.size();
-}
-
-// Ground-truth pose at `stamp`: interpolated between the two nearest poses around it (slerp),
-// none when they are more than max_gap apart or the stamp is outside.
-std::optional<Eigen::Isometry3d> poseAt(const Trajectory& gt, double stamp, double max_gap = 0.05) {
-  const auto after = std::lower_bound(gt.begin(), gt.end(), stamp,
-                                      [](const StampedPose& p, double t) { return p.stamp < t; });
-  if (after == gt.end() || after == gt.begin()) {
-    if (after != gt.end() && std::abs(after->stamp - stamp) < 1e-6) return after->T_wc;
-    return std::nullopt;
-  }
-  const StampedPose& b = *after;
-  const StampedPose& a = *(after - 1);
-  if (b.stamp - a.stamp > max_gap) return std::nullopt;
-  const double s = (stamp - a.stamp) / (b.stamp - a.stamp);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(a.T_wc.linear())
-                   .slerp(s, Eigen::Quaterniond(b.T_wc.linear()))
-                   .toRotationMatrix();
-  T.translation() = (1.0 - s) * a.T_wc.translation() + s * b.T_wc.translation();
-  return T;
 }
 
 struct MethodReport {
@@ -143,10 +117,10 @@ std::string methodJson(const MethodReport& r) {
   out << "{\"rate_mean\": " << number(mean(r.rates)) << ", \"accepted_lines\": " << r.accepted
       << ", \"accepted_lines_matched\": " << r.accepted_matched
       << ", \"endpoint_distances\": " << r.distances_px.size()
-      << ", \"distance_median_px\": " << number(median(r.distances_px), 3)
+      << ", \"distance_median_px\": " << number(medianOrNan(r.distances_px), 3)
       << ", \"distance_mean_px\": " << number(mean(r.distances_px), 3)
       << ", \"within_2px\": " << number(fraction(r.distances_px, 2.0), 3)
-      << ", \"fitting_ms_median\": " << number(median(r.fitting_ms), 3) << "}";
+      << ", \"fitting_ms_median\": " << number(medianOrNan(r.fitting_ms), 3) << "}";
   return out.str();
 }
 
@@ -157,11 +131,12 @@ void printMethod(const char* name, const MethodReport& r, int offset) {
             << "    accepted 3D lines                     " << r.accepted << " ("
             << r.accepted_matched << " matched in k+" << offset << ")\n"
             << "    k->k+" << offset << " endpoint-to-line distance    median "
-            << number(median(r.distances_px), 3) << " px, mean " << number(mean(r.distances_px), 3)
-            << " px, <= 2 px " << number(100.0 * fraction(r.distances_px, 2.0), 1) << " % ("
-            << r.distances_px.size() << " endpoints)\n"
+            << number(medianOrNan(r.distances_px), 3) << " px, mean "
+            << number(mean(r.distances_px), 3) << " px, <= 2 px "
+            << number(100.0 * fraction(r.distances_px, 2.0), 1) << " % (" << r.distances_px.size()
+            << " endpoints)\n"
             << "    fitting                               median "
-            << number(median(r.fitting_ms), 3) << " ms\n";
+            << number(medianOrNan(r.fitting_ms), 3) << " ms\n";
 }
 
 int run(const Options& options) {
@@ -204,7 +179,8 @@ int run(const Options& options) {
     endpoints.rates.push_back(f.endpoints.reconstructionRate());
     sampled.accepted += static_cast<long>(f.sampled.numLines3D());
     endpoints.accepted += static_cast<long>(f.endpoints.numLines3D());
-    if (sequence.hasGroundTruth()) f.T_wc = poseAt(sequence.groundTruth(), images.stamp);
+    if (sequence.hasGroundTruth())
+      f.T_wc = interpolatePose(sequence.groundTruth(), images.stamp, 0.05);
     frames.push_back(std::move(f));
   }
 
@@ -244,10 +220,11 @@ int run(const Options& options) {
               << number(pairs ? static_cast<double>(gated_total) / pairs : std::nan(""), 2)
               << ", \"sampled\": " << methodJson(sampled)
               << ", \"endpoints\": " << methodJson(endpoints)
-              << ", \"timing_ms\": {\"extraction_median\": " << number(median(extraction_ms), 3)
-              << ", \"description_median\": " << number(median(description_ms), 3)
-              << ", \"fitting_median\": " << number(median(sampled.fitting_ms), 3)
-              << ", \"total_median\": " << number(median(total_ms), 3) << "}}\n";
+              << ", \"timing_ms\": {\"extraction_median\": "
+              << number(medianOrNan(extraction_ms), 3)
+              << ", \"description_median\": " << number(medianOrNan(description_ms), 3)
+              << ", \"fitting_median\": " << number(medianOrNan(sampled.fitting_ms), 3)
+              << ", \"total_median\": " << number(medianOrNan(total_ms), 3) << "}}\n";
     return 0;
   }
   std::cout << "Line features: " << options.sequence << "\n"
@@ -260,10 +237,10 @@ int run(const Options& options) {
             << number(pairs ? static_cast<double>(gated_total) / pairs : std::nan(""), 1) << ")\n";
   printMethod("PAPER.md §3.1 (sampled, RANSAC, PCA)", sampled, options.offset);
   printMethod("traditional (endpoint depth)", endpoints, options.offset);
-  std::cout << "  time per frame (median)  extraction " << number(median(extraction_ms), 2)
-            << " ms, description " << number(median(description_ms), 2) << " ms, fitting "
-            << number(median(sampled.fitting_ms), 2) << " ms, total " << number(median(total_ms), 2)
-            << " ms\n";
+  std::cout << "  time per frame (median)  extraction " << number(medianOrNan(extraction_ms), 2)
+            << " ms, description " << number(medianOrNan(description_ms), 2) << " ms, fitting "
+            << number(medianOrNan(sampled.fitting_ms), 2) << " ms, total "
+            << number(medianOrNan(total_ms), 2) << " ms\n";
   return 0;
 }
 

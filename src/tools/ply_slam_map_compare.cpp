@@ -20,6 +20,7 @@
 #include "ply_slam/dense/key_frame_cloud_builder.h"
 #include "ply_slam/dense/semantic_octree.h"
 #include "ply_slam/dense/voxel_agreement.h"
+#include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
@@ -61,25 +62,16 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// The ground-truth pose at `stamp`: translation linear, rotation slerp between the two poses
-// around it (at most 0.1 s apart). Throws when the stamp is not covered.
+// The ground-truth pose at `stamp` (poses at most 0.1 s apart around it); throws when the
+// stamp is not covered.
 Eigen::Isometry3d interpolate(const Trajectory& gt, double stamp) {
-  const auto after = std::lower_bound(gt.begin(), gt.end(), stamp,
-                                      [](const StampedPose& p, double t) { return p.stamp < t; });
-  if (after == gt.begin() || after == gt.end() || after->stamp - (after - 1)->stamp > 0.1) {
+  const auto T = interpolatePose(gt, stamp, 0.1);
+  if (!T) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(6) << "no ground truth around stamp " << stamp;
     throw std::runtime_error(s.str());
   }
-  const StampedPose& a = *(after - 1);
-  const StampedPose& b = *after;
-  const double t = (stamp - a.stamp) / (b.stamp - a.stamp);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(a.T_wc.linear())
-                   .slerp(t, Eigen::Quaterniond(b.T_wc.linear()))
-                   .toRotationMatrix();
-  T.translation() = (1 - t) * a.T_wc.translation() + t * b.T_wc.translation();
-  return T;
+  return *T;
 }
 
 // T_est_gt minimising sum |R_est_i - R R_gt_i|_F^2 + |t_est_i - (R t_gt_i + t)|^2 over
