@@ -35,12 +35,12 @@ KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera&
   if (!instances.empty()) {
     packet.label_image = cv::Mat::zeros(images.rgb.size(), CV_16UC1);
     // Larger instances first, so a smaller one in front keeps its pixels where they overlap.
-    std::vector<const Instance*> order;
-    for (const auto& instance : instances) order.push_back(&instance);
-    std::stable_sort(order.begin(), order.end(), [](const Instance* a, const Instance* b) {
-      return cv::countNonZero(a->mask) > cv::countNonZero(b->mask);
-    });
-    for (const Instance* instance : order) {
+    std::vector<std::pair<int, const Instance*>> order;  // (area, instance)
+    for (const auto& instance : instances)
+      order.push_back({cv::countNonZero(instance.mask), &instance});
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [area, instance] : order) {
       const int id = std::clamp(instance->id, 1, 65535);
       packet.label_image.setTo(id, instance->mask);
       packet.instances.push_back(
