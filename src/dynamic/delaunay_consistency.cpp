@@ -6,6 +6,8 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
+#include "ply_slam/common/statistics.h"
+
 namespace ply_slam {
 
 double DelaunayConsistency::varianceAlong(const Eigen::Vector3d& p,
@@ -62,11 +64,8 @@ bool DelaunayConsistency::exceeds(const Change& change, double scale) const {
   return change.metres > params_.min_change && change.sigmas > params_.sigma_factor * scale;
 }
 
-double DelaunayConsistency::noiseScale(std::vector<double> sigmas, double median_of_unit) {
-  if (sigmas.empty()) return 1.0;
-  const auto mid = sigmas.begin() + sigmas.size() / 2;
-  std::nth_element(sigmas.begin(), mid, sigmas.end());
-  return std::max(1.0, *mid / median_of_unit);
+double DelaunayConsistency::noiseScale(const std::vector<double>& sigmas, double median_of_unit) {
+  return sigmas.empty() ? 1.0 : std::max(1.0, upperMedian(sigmas) / median_of_unit);
 }
 
 std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorrespondence>& features,

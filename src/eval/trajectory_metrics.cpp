@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/eval/trajectory_association.h"
 
 namespace ply_slam {
@@ -32,13 +33,7 @@ ErrorStats summarize(std::vector<double> errors) {
   stats.mean = sum / n;
   stats.rmse = std::sqrt(sum_sq / n);
   // numpy.median, as TUM's scripts use: the mean of the two middle values for an even count.
-  const size_t mid = errors.size() / 2;
-  std::nth_element(errors.begin(), errors.begin() + mid, errors.end());
-  stats.median = errors[mid];
-  if (errors.size() % 2 == 0) {
-    const double below = *std::max_element(errors.begin(), errors.begin() + mid);
-    stats.median = 0.5 * (stats.median + below);
-  }
+  stats.median = median(errors);
   return stats;
 }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/semantic/live_segmenter.h"
@@ -30,12 +31,6 @@ void applyCameraInfo(const sensor_msgs::CameraInfo& info, PinholeCamera& camera)
   cv::Mat d = cv::Mat::zeros(1, 5, CV_64F);
   for (size_t i = 0; i < std::min<size_t>(5, info.D.size()); ++i) d.at<double>(0, i) = info.D[i];
   camera.distortion = d;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 }  // namespace
@@ -115,7 +110,8 @@ TrackingNode::~TrackingNode() {
                   << ", depth " << depth_received_ - std::min<size_t>(depth_received_, paired)
                   << "), tracked " << tracked_ << ", lost " << lost_ << ", dropped while behind "
                   << behind_dropped_ << ", skipped bad " << bad_input_.total() << " ("
-                  << bad_input_.summary() << "), median " << median(total_ms_) << " ms per frame");
+                  << bad_input_.summary() << "), median "
+                  << (total_ms_.empty() ? 0.0 : upperMedian(total_ms_)) << " ms per frame");
 }
 
 void TrackingNode::onRgb(const sensor_msgs::ImageConstPtr& rgb) {
@@ -289,7 +285,7 @@ void TrackingNode::publishStats() {
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
-    << " median_ms=" << median(total_ms_);
+    << " median_ms=" << (total_ms_.empty() ? 0.0 : upperMedian(total_ms_));
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

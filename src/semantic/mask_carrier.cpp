@@ -6,14 +6,10 @@
 #include <opencv2/video/tracking.hpp>
 #include <stdexcept>
 
+#include "ply_slam/common/statistics.h"
+
 namespace ply_slam {
 namespace {
-
-double median(std::vector<double> values) {
-  const auto mid = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
-}
 
 cv::Mat dilated(const cv::Mat& mask, int radius) {
   if (radius <= 0) return mask.clone();
@@ -61,10 +57,10 @@ std::vector<Instance> MaskCarrier::carry(const std::vector<Instance>& instances,
       carried.push_back(moved);
       continue;
     }
-    const double mx = median(dx), my = median(dy);
+    const double mx = upperMedian(dx), my = upperMedian(dy);
     std::vector<double> deviation;
     for (size_t i = 0; i < dx.size(); ++i) deviation.push_back(std::hypot(dx[i] - mx, dy[i] - my));
-    const int spread = static_cast<int>(std::ceil(median(deviation)));
+    const int spread = static_cast<int>(std::ceil(upperMedian(deviation)));
     const cv::Matx23d shift(1, 0, mx, 0, 1, my);
     cv::Mat shifted;
     cv::warpAffine(instance.mask, shifted, shift, instance.mask.size(), cv::INTER_NEAREST,

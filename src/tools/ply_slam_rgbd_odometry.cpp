@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
@@ -84,14 +85,7 @@ Eigen::Isometry3d nearestPose(const ply_slam::Trajectory& trajectory, double sta
   return best == trajectory.end() ? Eigen::Isometry3d::Identity() : best->T_wc;
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  if (values.size() % 2 == 1) return values[mid];
-  const double upper = values[mid];
-  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
-}
+double medianOrZero(const std::vector<double>& v) { return v.empty() ? 0.0 : ply_slam::median(v); }
 
 int run(const Options& options) {
   const ply_slam::SystemConfig config = ply_slam::loadConfig(options.config);
@@ -157,7 +151,7 @@ int run(const Options& options) {
   if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
   ply_slam::writeTumTrajectory(options.out, trajectory);
 
-  const double median_ms = median(compute_ms);
+  const double median_ms = medianOrZero(compute_ms);
   const double mean_ms = compute_ms.empty()
                              ? 0.0
                              : std::accumulate(compute_ms.begin(), compute_ms.end(), 0.0) /

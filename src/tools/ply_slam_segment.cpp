@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
@@ -26,10 +27,8 @@ namespace {
   std::exit(2);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
+double medianOrNan(const std::vector<double>& v) {
+  return v.empty() ? std::nan("") : upperMedian(v);
 }
 
 }  // namespace
@@ -105,11 +104,11 @@ int main(int argc, char** argv) {
     }
     std::cout << std::fixed << std::setprecision(1)
               << fs::path(params.model_path).filename().string() << ": " << ms.size() << " frames, "
-              << median(ms) << " ms median per frame";
+              << medianOrNan(ms) << " ms median per frame";
     if (truth) {
       const long missed = std::count_if(ious.begin(), ious.end(), [](double x) { return x < 0.3; });
-      std::cout << std::setprecision(3) << ", person mask IoU median " << median(ious) << " over "
-                << ious.size() << " views (walkers > 2 % of the image), " << missed
+      std::cout << std::setprecision(3) << ", person mask IoU median " << medianOrNan(ious)
+                << " over " << ious.size() << " views (walkers > 2 % of the image), " << missed
                 << " of them missed (IoU < 0.3)";
     }
     std::cout << "\n";

@@ -45,7 +45,7 @@ class DelaunayConsistency {
   bool exceeds(const Change& change, double scale) const;
   // How much larger than modelled the noise of mostly static measurements is (>= 1), from the
   // median of their normalised changes and that median for unit noise.
-  static double noiseScale(std::vector<double> sigmas, double median_of_unit);
+  static double noiseScale(const std::vector<double>& sigmas, double median_of_unit);
 
   // Variance of a back-projected point along unit direction d: depth noise along its ray,
   // pixel noise across it.
