@@ -98,6 +98,7 @@ TEST(DynamicFeatureFilter, ActiveInstanceDroppedWholePassiveAndStaticKept) {
   auto d = filter.decide(s.features, s.instance,
                          {{1, ClassMotion::kActive}, {2, ClassMotion::kPassive}}, 640, 480);
   ASSERT_TRUE(d.dynamic_instances.count(1)) << "r_d " << d.degree[1];
+  EXPECT_TRUE(d.measured.count(1));
   EXPECT_FALSE(d.dynamic_instances.count(2));
   int static_dropped = 0, static_total = 0;
   for (size_t i = 0; i < s.features.size(); ++i) {
@@ -152,6 +153,8 @@ TEST(DynamicFeatureFilter, LabelRulesFollowTheThresholds) {
                              {{8, ClassMotion::kActive}, {9, ClassMotion::kPassive}}, 640, 480);
   EXPECT_TRUE(d.dynamic_instances.count(8));
   EXPECT_FALSE(d.dynamic_instances.count(9));
+  // Presumed, not measured: nothing showed it moving.
+  EXPECT_FALSE(d.measured.count(8));
 }
 
 TEST(DynamicFeatureFilter, StaticSceneKeepsEverything) {

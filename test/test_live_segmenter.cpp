@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <opencv2/imgproc.hpp>
+#include <set>
 #include <thread>
 
 #include "ply_slam/semantic/instance_memory.h"
@@ -112,23 +113,57 @@ TEST(InstanceMemory, CarriesAMissedPersonOnForAFewFrames) {
   InstanceMemory memory(2);
   auto judged = memory.complete({person}, m.from);
   ASSERT_EQ(judged.size(), 1u);
-  memory.remember(judged, {7}, m.from);
+  EXPECT_TRUE(memory.presumed().empty());
+  memory.remember(judged, {7}, {7}, m.from);
   // Seen again: nothing is added.
   EXPECT_EQ(memory.complete({{3, "person", 0.8f, m.mask_to}}, m.to).size(), 1u);
-  // Missed: the remembered mask comes along, moved with the object, as a new instance.
+  // Missed: the remembered mask comes along, moved with the object, as a new instance; one
+  // measurement is not enough to presume it moving.
   judged = memory.complete({}, m.to);
   ASSERT_EQ(judged.size(), 1u);
   EXPECT_EQ(judged[0].class_name, "person");
   EXPECT_NE(judged[0].id, 7);
+  EXPECT_TRUE(memory.presumed().empty());
   EXPECT_GT(share(m.mask_to, judged[0].mask), 0.98);
-  // Carried for at most 2 frames, and only while it is judged dynamic.
-  memory.remember(judged, {judged[0].id}, m.to);
+  // Carried for at most 2 frames, even while it is measured moving.
+  memory.remember(judged, {judged[0].id}, {judged[0].id}, m.to);
   judged = memory.complete({}, m.to);
   ASSERT_EQ(judged.size(), 1u);
-  memory.remember(judged, {judged[0].id}, m.to);
+  EXPECT_EQ(memory.presumed(), std::set<int>{judged[0].id});  // measured twice in a row
+  memory.remember(judged, {judged[0].id}, {judged[0].id}, m.to);
   EXPECT_TRUE(memory.complete({}, m.to).empty());
-  memory.remember({person}, {}, m.from);  // a person judged static is not remembered
+  memory.remember({person}, {}, {}, m.from);  // a person judged static is not remembered
   EXPECT_TRUE(memory.complete({}, m.to).empty());
+}
+
+TEST(InstanceMemory, PresumesAPersonMeasuredMovingDynamicForAFewFrames) {
+  const MovingObject m = movingObject(10, 4, -3);
+  const auto frame = [&](int k) { return k % 2 ? m.to : m.from; };
+  const auto mask = [&](int k) { return k % 2 ? m.mask_to : m.mask_from; };
+  InstanceMemory memory(2);
+  // Measured moving once: not presumed in the next frame.
+  auto judged = memory.complete({{10, "person", 0.9f, mask(0)}}, frame(0));
+  memory.remember(judged, {10}, {10}, frame(0));
+  judged = memory.complete({{11, "person", 0.9f, mask(1)}}, frame(1));
+  EXPECT_TRUE(memory.presumed().empty());
+  // Twice in a row: presumed for the next 2 frames although they show it still.
+  memory.remember(judged, {11}, {11}, frame(1));
+  for (int k = 2; k <= 3; ++k) {
+    judged = memory.complete({{10 + k, "person", 0.9f, mask(k)}}, frame(k));
+    ASSERT_EQ(judged.size(), 1u);
+    EXPECT_EQ(memory.presumed(), std::set<int>{10 + k}) << "frame " << k;
+    memory.remember(judged, {}, memory.presumed(), frame(k));
+  }
+  // A person who stopped is judged on their own evidence again.
+  judged = memory.complete({{14, "person", 0.9f, mask(4)}}, frame(4));
+  EXPECT_TRUE(memory.presumed().empty());
+  // Another class where the person was is not taken for it; the person is carried on.
+  memory.remember(judged, {14}, {14}, frame(4));
+  judged = memory.complete({{15, "person", 0.9f, mask(5)}}, frame(5));
+  memory.remember(judged, {15}, {15}, frame(5));
+  judged = memory.complete({{16, "chair", 0.9f, mask(6)}}, frame(6));
+  ASSERT_EQ(judged.size(), 2u);
+  EXPECT_EQ(memory.presumed(), std::set<int>{judged[1].id});
 }
 
 TEST(LiveSegmenter, NothingBeforeTheFirstResultThenTheNewestFrame) {

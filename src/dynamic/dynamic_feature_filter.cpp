@@ -24,8 +24,9 @@ DynamicDecision DynamicFeatureFilter::decide(const std::vector<FeatureCorrespond
     const auto kind = motion.count(id) ? motion.at(id) : ClassMotion::kStatic;
     if ((kind == ClassMotion::kActive && degree > params_.active_degree) ||
         (kind == ClassMotion::kPassive && degree > params_.passive_degree))
-      d.dynamic_instances.insert(id);
+      d.measured.insert(id);
   }
+  d.dynamic_instances = d.measured;
   // Too few matched features to judge a person or an animal by: presume it moves.
   for (const auto& [id, kind] : motion)
     if (kind == ClassMotion::kActive &&

@@ -117,7 +117,8 @@ cv::Mat DynamicRejector::unionMask(const std::vector<Instance>& instances,
 
 DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double stamp,
                                          const std::vector<Instance>& instances,
-                                         const CameraVelocity* velocity) const {
+                                         const CameraVelocity* velocity,
+                                         const std::set<int>& presumed) const {
   DynamicRejection r;
   r.fate.assign(current.size(), FeatureFate::kKept);
   if (mode_ == DynamicMode::kOff) return r;
@@ -155,8 +156,13 @@ DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double st
       if (d.weight[k] > params_.filter.weight_threshold)
         r.fate[feature_of[k]] = FeatureFate::kGeometric;
     r.dynamic_instances = d.dynamic_instances;
+    r.measured_instances = d.measured;
     r.degree = d.degree;
   }
+  if (mode_ != DynamicMode::kGeometric)
+    for (const auto& instance : instances)
+      if (presumed.count(instance.id) && motionOf(instance.class_name) == ClassMotion::kActive)
+        r.dynamic_instances.insert(instance.id);
   r.dynamic_mask = unionMask(instances, r.dynamic_instances);
   if (!r.dynamic_mask.empty())
     for (size_t i = 0; i < current.size(); ++i)

@@ -75,7 +75,7 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   // A person the segmenter missed in this frame is still where the last frames put it.
   const std::vector<Instance> judged = memory_.complete(instances, gray);
   rejectDynamic(features, images.stamp, judged, result);
-  memory_.remember(judged, result.dynamic_instances, gray);
+  memory_.remember(judged, result.measured_instances, result.dynamic_instances, gray);
   result.instances = judged;
   Frame frame(result.frame_id, images.stamp, std::move(features));
   result.timing.features_ms = total.elapsedMs();
@@ -110,7 +110,8 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
 
 void System::rejectDynamic(FrameFeatures& features, double stamp,
                            const std::vector<Instance>& instances, FrameResult& result) {
-  DynamicRejection rejection = rejector_.decide(features, stamp, instances, tracker_.velocity());
+  DynamicRejection rejection =
+      rejector_.decide(features, stamp, instances, tracker_.velocity(), memory_.presumed());
   rejector_.remember(features, stamp);  // all: a feature dropped now is judged again later
   result.features.resize(features.size());
   std::vector<bool> drop(features.size());
@@ -120,6 +121,7 @@ void System::rejectDynamic(FrameFeatures& features, double stamp,
   }
   result.dynamic_features = features.removeIf(drop);
   result.dynamic_instances = std::move(rejection.dynamic_instances);
+  result.measured_instances = std::move(rejection.measured_instances);
   result.dynamic_mask = rejection.dynamic_mask;
 }
 

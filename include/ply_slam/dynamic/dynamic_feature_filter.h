@@ -17,6 +17,7 @@ struct DynamicDecision {
   std::vector<bool> dynamic;        // per feature: leave it out of pose estimation
   std::map<int, double> degree;     // instance id -> r_d = w_lab / N_all
   std::set<int> dynamic_instances;  // instances judged moving as a whole
+  std::set<int> measured;           // those of them judged by their own r_d
 };
 
 // Fuses the geometric evidence with instance labels: features whose Delaunay weight exceeds

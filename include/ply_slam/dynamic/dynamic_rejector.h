@@ -23,11 +23,12 @@ DynamicMode parseDynamicMode(const std::string& mode);  // throws std::invalid_a
 enum class FeatureFate : unsigned char { kKept, kGeometric, kSemantic };
 
 struct DynamicRejection {
-  std::vector<FeatureFate> fate;  // per feature of the current frame
-  std::set<int> dynamic_instances;
-  std::map<int, double> degree;  // r_d per instance that had matched features
-  cv::Mat dynamic_mask;          // 8UC1 dilated union of the dynamic instances; empty: none
-  int matched = 0;               // features matched to the previous frame (Delaunay vertices)
+  std::vector<FeatureFate> fate;     // per feature of the current frame
+  std::set<int> dynamic_instances;   // measured moving, or presumed so
+  std::set<int> measured_instances;  // those whose own matched features found them moving
+  std::map<int, double> degree;      // r_d per instance that had matched features
+  cv::Mat dynamic_mask;              // 8UC1 dilated union of the dynamic instances; empty: none
+  int matched = 0;                   // features matched to the previous frame (Delaunay vertices)
   size_t dropped() const;
 };
 
@@ -42,9 +43,12 @@ class DynamicRejector {
 
   DynamicMode mode() const { return mode_; }
   // velocity: the camera's, to predict where the earlier frame's features are now; may be null.
+  // presumed: ids of instances to treat as dynamic whatever this frame shows (InstanceMemory)
+  // if their class is an active one (a chair judged moved once stays on its evidence); labels
+  // are only read in semantic and full mode, so geometric mode ignores them.
   DynamicRejection decide(const FrameFeatures& current, double stamp,
-                          const std::vector<Instance>& instances,
-                          const CameraVelocity* velocity) const;
+                          const std::vector<Instance>& instances, const CameraVelocity* velocity,
+                          const std::set<int>& presumed = {}) const;
   // Keeps the frame's features (all of them, dynamic ones too) for the frames to come.
   void remember(const FrameFeatures& current, double stamp);
 

@@ -45,9 +45,10 @@ struct FrameResult {
   size_t dynamic_features = 0;  // dropped because they lay on a moving object
   size_t dynamic_lines = 0;     // lines dropped: an endpoint on a dynamic instance
   std::vector<FeatureMark> features;
-  std::vector<Instance> instances;  // as judged: the segmenter's and those carried on for it
-  std::set<int> dynamic_instances;  // ids of the instances judged moving
-  cv::Mat dynamic_mask;             // their dilated union (8UC1), empty when none
+  std::vector<Instance> instances;   // as judged: the segmenter's and those carried on for it
+  std::set<int> dynamic_instances;   // ids of the instances judged moving
+  std::set<int> measured_instances;  // those of them this frame's own evidence found moving
+  cv::Mat dynamic_mask;              // their dilated union (8UC1), empty when none
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
 };
