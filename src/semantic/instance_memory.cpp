@@ -1,19 +1,26 @@
 #include "ply_slam/semantic/instance_memory.h"
 
 #include <algorithm>
+#include <opencv2/imgproc.hpp>
 
 namespace ply_slam {
 namespace {
 
-// Overlap of a with b, as a share of a.
-double covered(const cv::Mat& a, const cv::Mat& b) {
-  const int area = cv::countNonZero(a);
-  return area > 0 ? static_cast<double>(cv::countNonZero(a & b)) / area : 0.0;
-}
+// A mask's area and bounding box, so that overlaps only look where both can be non-zero.
+struct Region {
+  explicit Region(const cv::Mat& m)
+      : mask(m), box(cv::boundingRect(m)), area(cv::countNonZero(m)) {}
+  cv::Mat mask;
+  cv::Rect box;
+  int area;
+};
 
-double iou(const cv::Mat& a, const cv::Mat& b) {
-  const int either = cv::countNonZero(a | b);
-  return either > 0 ? static_cast<double>(cv::countNonZero(a & b)) / either : 0.0;
+int overlap(const Region& a, const Region& b) {
+  const cv::Rect both = a.box & b.box;
+  if (both.empty()) return 0;
+  cv::Mat common;
+  cv::bitwise_and(a.mask(both), b.mask(both), common);
+  return cv::countNonZero(common);
 }
 
 // Below this IoU with where a remembered instance went, a detection is not taken for it: a
@@ -31,6 +38,8 @@ std::vector<Instance> InstanceMemory::complete(const std::vector<Instance>& inst
   std::vector<Instance> previous;
   for (const auto& r : remembered_) previous.push_back(r.instance);
   const std::vector<Instance> moved = carrier_.carry(previous, gray_, gray);
+  std::vector<Region> regions;
+  for (const auto& instance : instances) regions.emplace_back(instance.mask);
   for (size_t k = 0; k < moved.size(); ++k) {
     Remembered r = remembered_[k];
     ++r.unmeasured;
@@ -41,13 +50,15 @@ std::vector<Instance> InstanceMemory::complete(const std::vector<Instance>& inst
     bool seen = false;
     const Instance* same = nullptr;
     double best = kSameInstanceIou;
-    for (const auto& instance : instances) {
-      if (instance.class_name != moved[k].class_name) continue;
-      seen = seen || covered(moved[k].mask, instance.mask) > 0.3;
-      const double overlap = iou(moved[k].mask, instance.mask);
-      if (overlap > best) {
-        best = overlap;
-        same = &instance;
+    const Region where(moved[k].mask);
+    for (size_t j = 0; j < instances.size(); ++j) {
+      if (instances[j].class_name != moved[k].class_name || where.area == 0) continue;
+      const int both = overlap(where, regions[j]);
+      seen = seen || both > 0.3 * where.area;
+      const double iou = static_cast<double>(both) / (where.area + regions[j].area - both);
+      if (iou > best) {
+        best = iou;
+        same = &instances[j];
       }
     }
     const auto followed = [&](int id) {

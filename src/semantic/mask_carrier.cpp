@@ -11,12 +11,25 @@
 namespace ply_slam {
 namespace {
 
-cv::Mat dilated(const cv::Mat& mask, int radius) {
-  if (radius <= 0) return mask.clone();
-  cv::Mat out;
+constexpr int kWindow = 21, kLevels = 3;
+
+// The mask shifted by (dx, dy) whole pixels and dilated by `radius`. Both only touch the
+// mask's bounding box and its surroundings: full-image morphology per instance and frame
+// cost more than the tracking itself.
+cv::Mat shiftedAndDilated(const cv::Mat& mask, const cv::Rect& box, int dx, int dy, int radius) {
+  cv::Mat out = cv::Mat::zeros(mask.size(), CV_8UC1);
+  const cv::Rect image(0, 0, mask.cols, mask.rows);
+  const cv::Rect to = (box + cv::Point(dx, dy)) & image;
+  if (to.empty()) return out;
+  mask(to - cv::Point(dx, dy)).copyTo(out(to));
+  if (radius <= 0) return out;
+  const cv::Rect around =
+      cv::Rect(to.x - radius, to.y - radius, to.width + 2 * radius, to.height + 2 * radius) & image;
+  cv::Mat grown;
   cv::dilate(
-      mask, out,
+      out(around), grown,
       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
+  grown.copyTo(out(around));
   return out;
 }
 
@@ -27,33 +40,46 @@ std::vector<Instance> MaskCarrier::carry(const std::vector<Instance>& instances,
   if (from_gray.type() != CV_8UC1 || to_gray.type() != CV_8UC1 ||
       from_gray.size() != to_gray.size())
     throw std::invalid_argument("MaskCarrier: grey images of one size expected");
-  std::vector<Instance> carried;
-  for (const Instance& instance : instances) {
+  for (const Instance& instance : instances)
     if (instance.mask.size() != from_gray.size())
       throw std::invalid_argument("MaskCarrier: mask size differs from the image");
-    // Corners well inside the mask: its rim mixes object and background motion.
-    cv::Mat inner;
-    cv::erode(instance.mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(9, 9)));
-    std::vector<cv::Point2f> from;
-    cv::goodFeaturesToTrack(from_gray, from, params_.samples_per_instance, 0.01, 5.0, inner);
+  std::vector<Instance> carried;
+  if (instances.empty()) return carried;
+  // One pair of pyramids for every instance.
+  std::vector<cv::Mat> from_pyramid, to_pyramid;
+  cv::buildOpticalFlowPyramid(from_gray, from_pyramid, cv::Size(kWindow, kWindow), kLevels);
+  cv::buildOpticalFlowPyramid(to_gray, to_pyramid, cv::Size(kWindow, kWindow), kLevels);
+  for (const Instance& instance : instances) {
     Instance moved = instance;
-    if (from.size() < 3) {
-      moved.mask = dilated(instance.mask, params_.margin_px);
+    const cv::Rect box = cv::boundingRect(instance.mask);
+    if (box.empty()) {
       carried.push_back(moved);
       continue;
     }
-    std::vector<cv::Point2f> to;
-    std::vector<unsigned char> ok;
-    std::vector<float> error;
-    cv::calcOpticalFlowPyrLK(from_gray, to_gray, from, to, ok, error, cv::Size(21, 21), 3);
+    // Corners well inside the mask: its rim mixes object and background motion.
+    cv::Mat inner;
+    cv::erode(instance.mask(box), inner,
+              cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(9, 9)), cv::Point(-1, -1), 1,
+              cv::BORDER_CONSTANT, cv::Scalar(0));
+    std::vector<cv::Point2f> from;
+    if (box.width >= 3 && box.height >= 3)
+      cv::goodFeaturesToTrack(from_gray(box), from, params_.samples_per_instance, 0.01, 5.0, inner);
+    for (auto& p : from) p += cv::Point2f(static_cast<float>(box.x), static_cast<float>(box.y));
     std::vector<double> dx, dy;
-    for (size_t i = 0; i < from.size(); ++i)
-      if (ok[i]) {
-        dx.push_back(to[i].x - from[i].x);
-        dy.push_back(to[i].y - from[i].y);
-      }
-    if (dx.size() < 3) {
-      moved.mask = dilated(instance.mask, params_.margin_px);
+    if (from.size() >= 3) {
+      std::vector<cv::Point2f> to;
+      std::vector<unsigned char> ok;
+      std::vector<float> error;
+      cv::calcOpticalFlowPyrLK(from_pyramid, to_pyramid, from, to, ok, error,
+                               cv::Size(kWindow, kWindow), kLevels);
+      for (size_t i = 0; i < from.size(); ++i)
+        if (ok[i]) {
+          dx.push_back(to[i].x - from[i].x);
+          dy.push_back(to[i].y - from[i].y);
+        }
+    }
+    if (dx.size() < 3) {  // nothing to follow: where it was, a little wider
+      moved.mask = shiftedAndDilated(instance.mask, box, 0, 0, params_.margin_px);
       carried.push_back(moved);
       continue;
     }
@@ -61,11 +87,8 @@ std::vector<Instance> MaskCarrier::carry(const std::vector<Instance>& instances,
     std::vector<double> deviation;
     for (size_t i = 0; i < dx.size(); ++i) deviation.push_back(std::hypot(dx[i] - mx, dy[i] - my));
     const int spread = static_cast<int>(std::ceil(upperMedian(deviation)));
-    const cv::Matx23d shift(1, 0, mx, 0, 1, my);
-    cv::Mat shifted;
-    cv::warpAffine(instance.mask, shifted, shift, instance.mask.size(), cv::INTER_NEAREST,
-                   cv::BORDER_CONSTANT, 0);
-    moved.mask = dilated(shifted, params_.margin_px + spread);
+    moved.mask =
+        shiftedAndDilated(instance.mask, box, cvRound(mx), cvRound(my), params_.margin_px + spread);
     carried.push_back(moved);
   }
   return carried;
