@@ -1,11 +1,17 @@
 // ply_slam_map_compare: how much a semantic octree built from estimated keyframe poses agrees
 // with the one built from ground-truth poses, on the same images.
 //   ply_slam_map_compare --sequence DIR --config FILE --keyframes KeyFrameTrajectory.txt
-//                        [--out DIR]
-// The ground truth (DIR/groundtruth.txt) is interpolated at the keyframe stamps and rigidly
-// aligned to the estimated keyframe poses (rotations and positions: a camera that mostly turns
-// in place, like fr1/rpy, leaves a positions-only alignment's rotation undetermined); both
-// octrees use the config's dense section (no segmentation: meant for static sequences).
+//                        [--clock-offset auto|SECONDS] [--out DIR]
+// The ground truth (DIR/groundtruth.txt) is interpolated at the keyframe stamps plus the
+// clock offset and rigidly aligned to the estimated keyframe poses (rotations and positions:
+// a camera that mostly turns in place, like fr1/rpy, leaves a positions-only alignment's
+// rotation undetermined); both octrees use the config's dense section (no segmentation:
+// meant for static sequences).
+// The camera's stamps and the motion capture's clock need not agree: a few ms are a fraction
+// of a degree when the camera turns fast. `auto` (the default) fits the offset, within
+// +-30 ms, that minimises the keyframes' rotation error after alignment, and compares the
+// octrees both at the recorded stamps and at the fitted offset (TUM's evaluate_ate.py takes
+// such an offset by hand, --offset).
 // Prints and writes DIR/map_compare.json.
 // Exit codes: 0 ok, 1 bad data, 2 usage error.
 #include <algorithm>
@@ -31,12 +37,14 @@ namespace {
 
 struct Options {
   std::string sequence, config, keyframes, out;
+  bool fit_clock_offset = true;
+  double clock_offset = 0.0;  // s, added to the keyframe stamps to look up the ground truth
 };
 
 [[noreturn]] void usage(const std::string& error) {
   std::cerr << "ply_slam_map_compare: " << error << "\n"
             << "usage: ply_slam_map_compare --sequence DIR --config FILE --keyframes FILE"
-               " [--out DIR]\n";
+               " [--clock-offset auto|SECONDS] [--out DIR]\n";
   std::exit(2);
 }
 
@@ -54,6 +62,13 @@ Options parse(int argc, char** argv) {
       o.keyframes = value;
     else if (arg == "--out")
       o.out = value;
+    else if (arg == "--clock-offset")
+      try {
+        o.fit_clock_offset = value == "auto";
+        if (!o.fit_clock_offset) o.clock_offset = std::stod(value);
+      } catch (const std::exception&) {
+        usage("--clock-offset needs auto or seconds, not " + value);
+      }
     else
       usage("unknown option " + arg);
   }
@@ -100,6 +115,64 @@ size_t frameAt(const TumSequence& sequence, double stamp) {
   throw std::runtime_error(s.str());
 }
 
+// The ground truth at the keyframes' stamps + offset, aligned to the keyframes, and how far
+// the keyframes are from it.
+struct AlignedGroundTruth {
+  double offset = 0.0;
+  std::vector<Eigen::Isometry3d> T_wc;  // in the estimate's world frame
+  double position_rmse = 0.0, rotation_rmse_deg = 0.0;
+};
+
+AlignedGroundTruth alignGroundTruth(const Trajectory& gt, const Trajectory& keyframes,
+                                    double offset) {
+  AlignedGroundTruth a;
+  a.offset = offset;
+  std::vector<Eigen::Isometry3d> est;
+  for (const auto& k : keyframes) {
+    a.T_wc.push_back(interpolate(gt, k.stamp + offset));
+    est.push_back(k.T_wc);
+  }
+  const Eigen::Isometry3d T_est_gt = alignPoses(est, a.T_wc);
+  double position = 0.0, angle = 0.0;
+  for (size_t i = 0; i < est.size(); ++i) {
+    a.T_wc[i] = T_est_gt * a.T_wc[i];
+    const Eigen::Isometry3d error = est[i].inverse() * a.T_wc[i];
+    position += error.translation().squaredNorm();
+    angle += std::pow(Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI, 2);
+  }
+  a.position_rmse = std::sqrt(position / est.size());
+  a.rotation_rmse_deg = std::sqrt(angle / est.size());
+  return a;
+}
+
+// The offset in [-30, 30] ms (0.5 ms steps) with the smallest keyframe rotation error.
+AlignedGroundTruth fitClockOffset(const Trajectory& gt, const Trajectory& keyframes) {
+  AlignedGroundTruth best = alignGroundTruth(gt, keyframes, 0.0);
+  for (int step = -60; step <= 60; ++step) {
+    try {
+      AlignedGroundTruth a = alignGroundTruth(gt, keyframes, step * 0.0005);
+      if (a.rotation_rmse_deg < best.rotation_rmse_deg) best = std::move(a);
+    } catch (const std::runtime_error&) {  // shifted past the ground truth's ends
+    }
+  }
+  return best;
+}
+
+std::string comparisonJson(const AlignedGroundTruth& a, const VoxelAgreement& r,
+                           const std::string& indent) {
+  std::ostringstream json;
+  json << std::setprecision(6) << indent << "\"clock_offset_s\": " << a.offset << ",\n"
+       << indent << "\"keyframe_position_rmse_m\": " << a.position_rmse << ",\n"
+       << indent << "\"keyframe_rotation_rmse_deg\": " << a.rotation_rmse_deg << ",\n"
+       << indent << "\"occupied_estimated\": " << r.a << ",\n"
+       << indent << "\"occupied_ground_truth\": " << r.b << ",\n"
+       << indent << "\"occupied_both\": " << r.both << ",\n"
+       << indent << "\"strict_iou\": " << r.iou << ",\n"
+       << indent << "\"strict_estimated_in_ground_truth\": " << r.a_in_b << ",\n"
+       << indent << "\"tolerant_within_one_voxel\": " << r.tolerant;
+  return json.str();
+}
+
 int run(const Options& options) {
   const SystemConfig config = loadConfig(options.config);
   const TumSequence sequence(options.sequence);
@@ -108,21 +181,20 @@ int run(const Options& options) {
   const Trajectory keyframes = readTumTrajectory(options.keyframes);
   if (keyframes.size() < 3) throw std::runtime_error(options.keyframes + ": fewer than 3 poses");
 
-  std::vector<Eigen::Isometry3d> gt_poses, est_poses;
-  for (const auto& k : keyframes) {
-    gt_poses.push_back(interpolate(sequence.groundTruth(), k.stamp));
-    est_poses.push_back(k.T_wc);
-  }
-  const Eigen::Isometry3d T_est_gt = alignPoses(est_poses, gt_poses);
+  const Trajectory& gt = sequence.groundTruth();
+  const AlignedGroundTruth recorded = alignGroundTruth(gt, keyframes, options.clock_offset);
+  const AlignedGroundTruth fitted =
+      options.fit_clock_offset ? fitClockOffset(gt, keyframes) : recorded;
 
   const DenseParams& dense = config.dense;
   const ClassPalette palette =
       dense.palette.empty() ? ClassPalette() : ClassPalette::fromFile(dense.palette);
   const KeyFrameCloudBuilder builder(dense, palette);
   const auto mode = SemanticOctree::parseColourMode(dense.colour_mode);
-  SemanticOctree estimated(dense.octree_resolution, mode, palette, dense.octree_occupancy);
-  SemanticOctree ground_truth(dense.octree_resolution, mode, palette, dense.octree_occupancy);
-  double position_error_sum = 0.0, angle_error_sum = 0.0;
+  const auto octree = [&] {
+    return SemanticOctree(dense.octree_resolution, mode, palette, dense.octree_occupancy);
+  };
+  SemanticOctree estimated = octree(), at_recorded = octree(), at_fitted = octree();
   for (size_t i = 0; i < keyframes.size(); ++i) {
     const RgbdImages images =
         sequence.load(frameAt(sequence, keyframes[i].stamp), config.camera.depth_factor);
@@ -135,27 +207,29 @@ int run(const Options& options) {
     packet.T_wc = keyframes[i].T_wc;
     KeyFrameCloud cloud = builder.build(packet);
     estimated.insert(cloud);
-    cloud.T_wc = T_est_gt * gt_poses[i];
-    ground_truth.insert(cloud);
-    const Eigen::Isometry3d error = keyframes[i].T_wc.inverse() * cloud.T_wc;
-    position_error_sum += error.translation().squaredNorm();
-    angle_error_sum += std::pow(Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI, 2);
+    cloud.T_wc = recorded.T_wc[i];
+    at_recorded.insert(cloud);
+    if (options.fit_clock_offset) {
+      cloud.T_wc = fitted.T_wc[i];
+      at_fitted.insert(cloud);
+    }
   }
-  const VoxelAgreement r = compareOccupiedVoxels(
-      estimated.occupiedVoxels(), ground_truth.occupiedVoxels(), dense.octree_resolution);
-  const double keyframe_rmse = std::sqrt(position_error_sum / keyframes.size());
-  const double keyframe_rmse_deg = std::sqrt(angle_error_sum / keyframes.size());
+  const auto compare = [&](const SemanticOctree& ground_truth) {
+    return compareOccupiedVoxels(estimated.occupiedVoxels(), ground_truth.occupiedVoxels(),
+                                 dense.octree_resolution);
+  };
+  const VoxelAgreement r = compare(options.fit_clock_offset ? at_fitted : at_recorded);
 
   std::ostringstream json;
   json << std::setprecision(6) << "{\n  \"sequence\": \"" << sequence.folder()
        << "\",\n  \"keyframes\": " << keyframes.size()
-       << ",\n  \"keyframe_position_rmse_m\": " << keyframe_rmse
-       << ",\n  \"keyframe_rotation_rmse_deg\": " << keyframe_rmse_deg
        << ",\n  \"octree_resolution\": " << dense.octree_resolution
-       << ",\n  \"occupied_estimated\": " << r.a << ",\n  \"occupied_ground_truth\": " << r.b
-       << ",\n  \"occupied_both\": " << r.both << ",\n  \"strict_iou\": " << r.iou
-       << ",\n  \"strict_estimated_in_ground_truth\": " << r.a_in_b
-       << ",\n  \"tolerant_within_one_voxel\": " << r.tolerant << "\n}\n";
+       << ",\n  \"clock_offset_fitted\": " << (options.fit_clock_offset ? "true" : "false") << ",\n"
+       << comparisonJson(fitted, r, "  ");
+  if (options.fit_clock_offset)
+    json << ",\n  \"at_recorded_stamps\": {\n"
+         << comparisonJson(recorded, compare(at_recorded), "    ") << "\n  }";
+  json << "\n}\n";
   std::cout << json.str();
   if (!options.out.empty()) {
     fs::create_directories(options.out);
