@@ -130,6 +130,7 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = params_.max_iterations;
+  options.function_tolerance = params_.function_tolerance;
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;
 
