@@ -1,6 +1,7 @@
 // End to end on the real TUM sequences in ../shared: the whole offline pipeline, evaluated
 // against ground truth.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -60,8 +61,10 @@ TEST(EndToEnd, Freiburg1Rpy150To349) {
 
 // Issue #3: the synthetic office without walkers, exact ground truth, 300 frames.
 TEST(EndToEnd, SyntheticOffice) {
+  // Per process: two test runs at once (two build trees) must not share the folder.
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / "ply_slam_test_synthetic_office";
+      std::filesystem::temp_directory_path() /
+      ("ply_slam_test_synthetic_office_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   SynthOptions options;
   options.scene = SceneKind::kOffice;

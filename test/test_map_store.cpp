@@ -2,6 +2,7 @@
 // (Map::applyUpdate, what tracking_node does with ~map_update) and configs from YAML text
 // (what the nodes build from rosparam).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -74,7 +75,8 @@ TEST(MapStore, SavesEverythingItHolds) {
   MapStore store;
   store.insert(packet(0, 1.0, 0.0));
   store.insert(packet(1, 2.0, 1.0));
-  const auto dir = std::filesystem::temp_directory_path() / "ply_slam_map_store_test";
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("ply_slam_map_store_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   store.save(dir.string());
   const Trajectory keyframes = readTumTrajectory((dir / "KeyFrameTrajectory.txt").string());

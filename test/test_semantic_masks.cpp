@@ -1,5 +1,6 @@
 // Instance masks from a folder, and the system leaving out features on moving objects.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -53,7 +54,8 @@ TEST(MaskFolderSegmenter, ReadsTheWalkersMasks) {
 }
 
 TEST(MaskFolderSegmenter, MissingFilesAreNamed) {
-  const fs::path dir = fs::temp_directory_path() / "ply_slam_test_masks";
+  const fs::path dir =
+      fs::temp_directory_path() / ("ply_slam_test_masks_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "masks");
   try {
@@ -84,7 +86,8 @@ TEST(DynamicFeatures, WalkersMaskedOutOnSyntheticOffice) {
   SynthOptions options;
   options.walkers = 2;
   options.frames = 90;
-  const fs::path dir = fs::temp_directory_path() / "ply_slam_test_walkers";
+  const fs::path dir =
+      fs::temp_directory_path() / ("ply_slam_test_walkers_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   writeSyntheticSequence(SyntheticSequence(options), dir.string());
 

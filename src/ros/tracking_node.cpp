@@ -258,9 +258,21 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
     pose.header = header;
     pose.pose = toPoseMsg(result.tracking.T_cw.inverse());
     pose_pub_.publish(pose);
-    path_.header = header;
-    path_.poses.push_back(pose);
-    path_pub_.publish(path_);
+    // The path is for looking at: a pose every few cm or degrees, the most recent
+    // kMaxPathPoses of them, so that hours of tracking stay a message rviz can draw.
+    const Eigen::Isometry3d T_wc = result.tracking.T_cw.inverse();
+    const bool moved =
+        path_.poses.empty() || (T_wc.translation() - last_path_pose_.translation()).norm() > 0.01 ||
+        Eigen::AngleAxisd(T_wc.linear() * last_path_pose_.linear().transpose()).angle() >
+            1.0 * M_PI / 180.0;
+    if (moved) {
+      if (path_.poses.size() >= kMaxPathPoses)
+        path_.poses.erase(path_.poses.begin(), path_.poses.begin() + kMaxPathPoses / 2);
+      path_.header = header;
+      path_.poses.push_back(pose);
+      last_path_pose_ = T_wc;
+      path_pub_.publish(path_);
+    }
   }
   if (result.keyframe_packet) {
     keyframe_pub_.publish(toMsg(*result.keyframe_packet, world_frame_));

@@ -72,6 +72,8 @@ class TrackingNode {
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, stats_pub_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;
+  Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();
+  static constexpr size_t kMaxPathPoses = 20000;
 
   // The synchroniser emits a pair only once a later message proves no better match can come,
   // so the last pair of a stream (a bag's last frame) would wait for ever. When the stream has
