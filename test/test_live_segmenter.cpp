@@ -166,6 +166,19 @@ TEST(InstanceMemory, PresumesAPersonMeasuredMovingDynamicForAFewFrames) {
   EXPECT_EQ(memory.presumed(), std::set<int>{judged[1].id});
 }
 
+TEST(InstanceMemory, APresumptionIsNotAMeasurement) {
+  const MovingObject m = movingObject(10, 4, -3);
+  InstanceMemory memory(3);
+  // Dynamic for want of matched features, then measured moving once: no run of two yet.
+  auto judged = memory.complete({{10, "person", 0.9f, m.mask_from}}, m.from);
+  memory.remember(judged, {}, {10}, m.from);
+  judged = memory.complete({{11, "person", 0.9f, m.mask_to}}, m.to);
+  EXPECT_TRUE(memory.presumed().empty());
+  memory.remember(judged, {11}, {11}, m.to);
+  memory.complete({{12, "person", 0.9f, m.mask_from}}, m.from);
+  EXPECT_TRUE(memory.presumed().empty());
+}
+
 TEST(LiveSegmenter, NothingBeforeTheFirstResultThenTheNewestFrame) {
   LiveSegmenter live(std::make_unique<SlowSegmenter>());
   EXPECT_TRUE(live.instancesFor(frame(0.0)).empty());

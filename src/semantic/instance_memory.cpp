@@ -86,7 +86,7 @@ void InstanceMemory::remember(const std::vector<Instance>& instances, const std:
   std::vector<Remembered> next;
   for (const auto& instance : instances) {
     if (!dynamic.count(instance.id)) continue;
-    Remembered r{instance, 0, 0, 1};
+    Remembered r{instance, 0, 0, 0};  // new: dynamic without a measurement has no run yet
     for (const auto& f : followed_)
       if (f.instance.id == instance.id) r = {instance, f.unseen, f.unmeasured, f.run};
     if (measured.count(instance.id)) {

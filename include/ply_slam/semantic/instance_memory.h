@@ -37,7 +37,7 @@ class InstanceMemory {
     Instance instance;
     int unseen = 0;      // frames since the segmenter last saw it
     int unmeasured = 0;  // frames since it was last measured moving
-    int run = 1;         // frames in a row it was measured moving, up to the last one
+    int run = 0;         // frames in a row it was measured moving, up to the last one
   };
   int max_frames_;
   int next_id_ = kFirstCarriedId;
