@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <limits>
 #include <opencv2/core.hpp>
+#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include "ply_slam/features/best_two.h"
 
 namespace ply_slam {
 namespace {
@@ -73,22 +76,15 @@ std::vector<FeatureCorrespondence> DynamicRejector::correspondences(
     if (p.z() <= 0) continue;
     const Eigen::Vector2d uv = camera_.project(p);
     const int level = prev.level(j);
-    int d1 = std::numeric_limits<int>::max(), d2 = d1;
-    size_t i1 = 0;
-    for (size_t i : current.featuresInArea(uv.x(), uv.y(), radius, level - 1, level + 1)) {
-      const int d = static_cast<int>(cv::norm(prev.descriptors.row(static_cast<int>(j)),
-                                              current.descriptors.row(static_cast<int>(i)),
-                                              cv::NORM_HAMMING));
-      if (d < d1) {
-        d2 = d1;
-        d1 = d;
-        i1 = i;
-      } else if (d < d2) {
-        d2 = d;
-      }
-    }
-    if (d1 > params_.max_descriptor_distance || d1 > kRatio * d2) continue;
-    if (d1 < best[i1].distance) best[i1] = {d1, j};
+    BestTwo two;
+    for (size_t i : current.featuresInArea(uv.x(), uv.y(), radius, level - 1, level + 1))
+      two.offer(
+          cv::hal::normHamming(prev.descriptors.ptr(static_cast<int>(j)),
+                               current.descriptors.ptr(static_cast<int>(i)), prev.descriptors.cols),
+          static_cast<long>(i));
+    if (!two.accept(params_.max_descriptor_distance, kRatio)) continue;
+    const auto i1 = static_cast<size_t>(two.index);
+    if (two.best < best[i1].distance) best[i1] = {two.best, j};
   }
   for (size_t i = 0; i < current.size(); ++i) {
     if (best[i].distance == std::numeric_limits<int>::max() || !current.hasDepth(i)) continue;

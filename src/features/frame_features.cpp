@@ -81,8 +81,7 @@ void FrameFeatures::correctMotion(const PinholeCamera& camera, const CameraVeloc
     if (!velocity || camera.rolling_shutter_readout == 0.0) continue;
     // Row v was read tau after the middle row: move its observation to the stamp's pose.
     // The depth image has the same row timing, so the depth lookup above needs no change.
-    const double tau = (keypoints[i].pt.y / camera.height - 0.5) * camera.rolling_shutter_readout;
-    const Eigen::Isometry3d T_stamp_row = velocity->over(-tau);
+    const Eigen::Isometry3d T_stamp_row = velocity->over(-camera.rowTime(keypoints[i].pt.y));
     if (depth[i] > 0.f) {
       const Eigen::Vector3d p = T_stamp_row * camera.backProject(rectified[i], depth[i]);
       undistorted[i] = camera.project(p);
@@ -92,17 +91,6 @@ void FrameFeatures::correctMotion(const PinholeCamera& camera, const CameraVeloc
     }
   }
   buildGrid();
-}
-
-size_t FrameFeatures::removeMasked(const cv::Mat& mask) {
-  CV_Assert(mask.type() == CV_8UC1 && mask.cols == width && mask.rows == height);
-  std::vector<bool> drop(keypoints.size());
-  for (size_t i = 0; i < keypoints.size(); ++i) {
-    const int u = std::clamp(cvRound(keypoints[i].pt.x), 0, width - 1);
-    const int v = std::clamp(cvRound(keypoints[i].pt.y), 0, height - 1);
-    drop[i] = mask.at<uchar>(v, u) != 0;
-  }
-  return removeIf(drop);
 }
 
 size_t FrameFeatures::removeIf(const std::vector<bool>& drop) {

@@ -50,10 +50,7 @@ double FrameLines::reconstructionRate() const {
 
 void FrameLines::correctMotion(const PinholeCamera& camera, const CameraVelocity& velocity) {
   if (camera.rolling_shutter_readout == 0.0) return;
-  auto toStamp = [&](double raw_row) {
-    const double tau = (raw_row / camera.height - 0.5) * camera.rolling_shutter_readout;
-    return velocity.over(-tau);
-  };
+  auto toStamp = [&](double raw_row) { return velocity.over(-camera.rowTime(raw_row)); };
   for (size_t i = 0; i < lines.size(); ++i) {
     LineFeature& l = lines[i];
     Line3D& fit = lines3d[i];

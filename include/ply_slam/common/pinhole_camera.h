@@ -37,6 +37,8 @@ struct PinholeCamera {
            uv.y() < height - border;
   }
   bool validDepth(double z) const { return z >= min_depth && z <= max_depth; }
+  // When raw image row v was read, relative to the middle row (the stamp): rolling shutter.
+  double rowTime(double v) const { return (v / height - 0.5) * rolling_shutter_readout; }
   bool hasDistortion() const;
   cv::Matx33d K() const { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
 };

@@ -36,9 +36,6 @@ struct FrameFeatures {
   // Recomputes `undistorted` and `depth` from the raw measurements for a (better) velocity.
   void correctMotion(const PinholeCamera& camera, const CameraVelocity* velocity);
 
-  // Drops the features whose raw keypoint lies on a non-zero pixel of `mask` (CV_8UC1, image
-  // size). Returns how many were dropped.
-  size_t removeMasked(const cv::Mat& mask);
   // Drops feature i where drop[i] (one flag per feature). Returns how many were dropped.
   size_t removeIf(const std::vector<bool>& drop);
 
