@@ -93,19 +93,19 @@ void DenseMap::rebuild() {
 }
 
 DenseCloudPtr DenseMap::globalCloud() {
-  if (dirty_ || !global_) rebuild();
+  if (dirty_) rebuild();
   return global_;
 }
 
 size_t DenseMap::numGlobalPoints() { return globalCloud()->size(); }
 
 size_t DenseMap::numUnfilteredPoints() {
-  if (dirty_ || !global_) rebuild();
+  if (dirty_) rebuild();
   return unfiltered_points_;
 }
 
 long DenseMap::taggedPoints(bool unfiltered) {
-  if (dirty_ || !global_) rebuild();
+  if (dirty_) rebuild();
   return unfiltered ? unfiltered_tagged_ : countTagged(global_tags_);
 }
 

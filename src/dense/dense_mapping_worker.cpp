@@ -5,19 +5,15 @@
 #include "ply_slam/common/stopwatch.h"
 
 namespace ply_slam {
-namespace {
-
-ClassPalette paletteOf(const DenseParams& params) {
-  return params.palette.empty() ? ClassPalette() : ClassPalette::fromFile(params.palette);
-}
-
-}  // namespace
 
 DenseMappingWorker::DenseMappingWorker(const DenseParams& params)
-    : builder_(params, paletteOf(params)),
+    : DenseMappingWorker(params, ClassPalette::configured(params.palette)) {}
+
+DenseMappingWorker::DenseMappingWorker(const DenseParams& params, const ClassPalette& palette)
+    : builder_(params, palette),
       map_(params.voxel_size),
       octree_(params.octree_resolution, SemanticOctree::parseColourMode(params.colour_mode),
-              paletteOf(params), params.octree_occupancy) {
+              palette, params.octree_occupancy) {
   if (params.octree_filter) map_.keepOnlyOccupied(&octree_);
   thread_ = std::thread([this] { run(); });
 }

@@ -140,7 +140,6 @@ KeyFrameCloud KeyFrameCloudBuilder::build(const KeyFramePacket& packet,
 
   KeyFrameCloud cloud;
   cloud.id = packet.id;
-  cloud.stamp = packet.stamp;
   cloud.T_wc = packet.T_wc;
   cloud.clearing_rays = std::move(clearing_rays);
   // Same points, same voxel grid: the filtered tags line up with the filtered points.

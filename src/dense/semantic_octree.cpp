@@ -73,22 +73,22 @@ void SemanticOctree::insert(const KeyFrameCloud& cloud) {
   // ends in is not also made free by another ray of the same keyframe.
   octomap::KeySet occupied, free, clearing_ends;
   octomap::KeyRay ray;
-  auto castTo = [&](const octomap::point3d& end, octomap::KeySet& ends) {
-    octomap::OcTreeKey key;
-    if (!tree.coordToKeyChecked(end, key) || !ends.insert(key).second) return;
-    if (tree.computeRayKeys(origin, end, ray)) free.insert(ray.begin(), ray.end());
+  // Casts one ray per new end voxel; false when `end` is outside the octree.
+  auto castTo = [&](const octomap::point3d& end, octomap::KeySet& ends, octomap::OcTreeKey& key) {
+    if (!tree.coordToKeyChecked(end, key)) return false;
+    if (ends.insert(key).second && tree.computeRayKeys(origin, end, ray))
+      free.insert(ray.begin(), ray.end());
+    return true;
   };
+  octomap::OcTreeKey key;
   for (size_t i = 0; i < cloud.points->size(); ++i) {
     const Eigen::Vector3f w = T_wc * cloud.points->points[i].getVector3fMap();
-    const octomap::point3d end(w.x(), w.y(), w.z());
-    castTo(end, occupied);
-    octomap::OcTreeKey key;
-    if (tree.coordToKeyChecked(end, key))
+    if (castTo(octomap::point3d(w.x(), w.y(), w.z()), occupied, key))
       impl_->voxels[key].add(cloud.points->points[i], cloud.tags && cloud.tags->points[i].label);
   }
   for (const Eigen::Vector3f& p : cloud.clearing_rays) {
     const Eigen::Vector3f w = T_wc * p;
-    castTo(octomap::point3d(w.x(), w.y(), w.z()), clearing_ends);
+    castTo(octomap::point3d(w.x(), w.y(), w.z()), clearing_ends, key);
   }
   // lazy: no pruning, so every leaf keeps its own colour.
   for (const auto& key : free)
@@ -155,8 +155,6 @@ size_t SemanticOctree::numOccupied() const {
     if (tree.isNodeOccupied(*it)) n += size_t(1) << (3 * (max_depth - it.getDepth()));
   return n;
 }
-
-double SemanticOctree::resolution() const { return impl_->tree.getResolution(); }
 
 size_t SemanticOctree::memoryBytes() const {
   size_t histograms = impl_->voxels.bucket_count() * sizeof(void*) +

@@ -116,11 +116,12 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
     return;
   }
   // The dense maps take the packet's images (the store keeps none); push only queues.
-  if (dense_) dense_->push(std::make_shared<const KeyFramePacket>(packet));
+  const auto shared = std::make_shared<const KeyFramePacket>(std::move(packet));
+  if (dense_) dense_->push(shared);
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!store_.insert(packet)) {
-      bad_input_.report("keyframe", "keyframe " + std::to_string(packet.id) + " is out of date");
+    if (!store_.insert(*shared)) {
+      bad_input_.report("keyframe", "keyframe " + std::to_string(shared->id) + " is out of date");
       return;
     }
   }
@@ -255,13 +256,18 @@ void MappingNode::publishDense(const ros::TimerEvent&) {
   std_msgs::Header header;
   header.stamp = ros::Time::now();
   header.frame_id = world_frame_;
+  // Only the snapshot under the maps' lock (a rebuild replaces the global cloud, never changes
+  // it): the worker need not wait while the messages are built.
+  const bool want_cloud = dense_cloud_pub_.getNumSubscribers() > 0;
+  DenseCloudPtr cloud;
+  std::vector<SemanticOctree::Voxel> voxels;
   dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
-    if (dense_cloud_pub_.getNumSubscribers() > 0)
-      dense_cloud_pub_.publish(toDenseCloudMsg(*map.globalCloud(), header));
-    const auto voxels = octree.occupiedVoxels();
-    octomap_markers_pub_.publish(toVoxelMarkers(voxels, header));
-    octomap_cloud_pub_.publish(toVoxelCloudMsg(voxels, header));
+    if (want_cloud) cloud = map.globalCloud();
+    voxels = octree.occupiedVoxels();
   });
+  if (cloud) dense_cloud_pub_.publish(toDenseCloudMsg(*cloud, header));
+  octomap_markers_pub_.publish(toVoxelMarkers(voxels, header));
+  octomap_cloud_pub_.publish(toVoxelCloudMsg(voxels, header));
 }
 
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {

@@ -187,8 +187,7 @@ int run(const Options& options) {
       options.fit_clock_offset ? fitClockOffset(gt, keyframes) : recorded;
 
   const DenseParams& dense = config.dense;
-  const ClassPalette palette =
-      dense.palette.empty() ? ClassPalette() : ClassPalette::fromFile(dense.palette);
+  const ClassPalette palette = ClassPalette::configured(dense.palette);
   const KeyFrameCloudBuilder builder(dense, palette);
   const auto mode = SemanticOctree::parseColourMode(dense.colour_mode);
   const auto octree = [&] {

@@ -25,6 +25,10 @@ class ClassPalette {
   // Reads "r g b class name" lines ('#' comments) over the built-in colours. Throws
   // std::runtime_error naming the file and line on an unknown class or a bad colour.
   static ClassPalette fromFile(const std::string& path);
+  // dense.palette: the file's colours, or the built-in ones when the path is empty.
+  static ClassPalette configured(const std::string& path) {
+    return path.empty() ? ClassPalette() : fromFile(path);
+  }
 
   size_t size() const { return names_.size(); }
   const std::string& name(std::uint32_t label) const;  // "unknown" for an unknown label

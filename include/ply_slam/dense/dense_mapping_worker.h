@@ -44,6 +44,8 @@ class DenseMappingWorker {
   std::string firstError() const;
 
  private:
+  DenseMappingWorker(const DenseParams& params, const ClassPalette& palette);  // palette read once
+
   struct Job {
     std::shared_ptr<const KeyFramePacket> packet;
     cv::Mat tag_mask;

@@ -21,7 +21,6 @@ using DenseCloudPtr = std::shared_ptr<DenseCloud>;
 // The dense cloud of one keyframe, in its camera frame, and the pose that places it.
 struct KeyFrameCloud {
   long id = 0;
-  double stamp = 0.0;
   Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
   DenseCloudPtr points;
   // Camera-frame points beyond the map's max_depth (up to the camera's): too noisy to map,

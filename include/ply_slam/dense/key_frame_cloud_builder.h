@@ -24,8 +24,6 @@ class KeyFrameCloudBuilder {
   // mistyped images, sizes that differ from each other or from the camera).
   KeyFrameCloud build(const KeyFramePacket& packet, const cv::Mat& tag_mask = cv::Mat()) const;
 
-  const DenseParams& params() const { return params_; }
-
  private:
   // Normalised image coordinates (x/z, y/z) of each raw pixel, CV_32FC2.
   const cv::Mat& rayTable(const PinholeCamera& camera) const;

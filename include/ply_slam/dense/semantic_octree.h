@@ -51,7 +51,6 @@ class SemanticOctree {
   std::vector<Voxel> occupiedVoxels() const;
   bool isOccupied(const Eigen::Vector3d& p) const;  // false for free and unknown space
   size_t numOccupied() const;
-  double resolution() const;
   size_t memoryBytes() const;  // tree (OcTree::memoryUsage) + histograms
   const ClassPalette& palette() const { return palette_; }
 
