@@ -114,13 +114,11 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
     neighbours[ia].push_back({ib, !bad});
     neighbours[ib].push_back({ia, !bad});
   }
-  for (size_t i = 0; i < features.size(); ++i)
-    if (edges_of[i] > 0) weight[i] = static_cast<double>(bad_of[i]) / edges_of[i];
 
   // A body moving as a whole keeps its inner edges: only its rim votes. So the features are
   // grown into rigid bodies: a feature joins a body when more of its edges into the body are
   // consistent than broken (a single edge across the motion keeps its length by chance). The
-  // static scene is the largest body; the features of a clearly smaller one get weight 1.
+  // static scene is the largest body.
   std::vector<int> body(features.size(), -1);
   std::vector<size_t> body_size;
   std::vector<size_t> seeds;
@@ -152,17 +150,23 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
     }
     body_size.push_back(size);
   }
-  const size_t largest =
-      body_size.empty() ? 0 : *std::max_element(body_size.begin(), body_size.end());
-  for (size_t i = 0; i < features.size(); ++i)
-    if (body[i] >= 0 && body_size[body[i]] < params_.minority_share * largest) weight[i] = 1.0;
+  const auto largest_body = std::max_element(body_size.begin(), body_size.end());
+  const size_t largest = largest_body == body_size.end() ? 0 : *largest_body;
+  if (largest < 3) {
+    // Too small a body to fix the camera's motion by: the edges' votes, and the features of a
+    // clearly smaller body than the largest moved.
+    for (size_t i = 0; i < features.size(); ++i)
+      if (edges_of[i] > 0) weight[i] = static_cast<double>(bad_of[i]) / edges_of[i];
+    for (size_t i = 0; i < features.size(); ++i)
+      if (body[i] >= 0 && body_size[body[i]] < params_.minority_share * largest) weight[i] = 1.0;
+    return weight;
+  }
 
   // Distances along one edge are blind to motion across it, and long edges in depth are
   // noisy. The largest body fixes the camera's motion between the frames: every feature that
-  // this motion does not carry onto its current position, beyond its noise, moved.
-  if (largest < 3) return weight;
-  const int static_body =
-      static_cast<int>(std::max_element(body_size.begin(), body_size.end()) - body_size.begin());
+  // this motion does not carry onto its current position, beyond its noise, moved (this
+  // replaces the edge votes of every feature with an edge).
+  const int static_body = static_cast<int>(largest_body - body_size.begin());
   std::vector<bool> inlier(features.size());
   for (size_t i = 0; i < features.size(); ++i) inlier[i] = body[i] == static_body;
   for (int round = 0; round < 2; ++round) {

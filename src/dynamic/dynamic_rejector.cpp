@@ -30,11 +30,6 @@ DynamicMode parseDynamicMode(const std::string& mode) {
   throw std::invalid_argument("dynamic mode '" + mode + "' (off, geometric, semantic or full)");
 }
 
-size_t DynamicRejection::dropped() const {
-  return static_cast<size_t>(std::count_if(fate.begin(), fate.end(),
-                                           [](FeatureFate f) { return f != FeatureFate::kKept; }));
-}
-
 DynamicRejector::DynamicRejector(const DynamicParams& params, const PinholeCamera& camera)
     : params_(params),
       mode_(parseDynamicMode(params.mode)),
@@ -132,7 +127,6 @@ DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double st
       if (velocity && stamp > earlier.stamp) T_cur_prev = velocity->over(stamp - earlier.stamp);
       matched = correspondences(earlier.features, current, T_cur_prev, feature_of);
     }
-    r.matched = static_cast<int>(matched.size());
     // Labels only in full mode: geometric mode judges features alone.
     std::vector<int> label(matched.size(), 0);
     std::map<int, ClassMotion> motion;
@@ -153,12 +147,10 @@ DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double st
         r.fate[feature_of[k]] = FeatureFate::kGeometric;
     r.dynamic_instances = d.dynamic_instances;
     r.measured_instances = d.measured;
-    r.degree = d.degree;
+    // Semantic mode has every active instance dynamic already.
+    for (const auto& [id, kind] : motion)
+      if (kind == ClassMotion::kActive && presumed.count(id)) r.dynamic_instances.insert(id);
   }
-  if (mode_ != DynamicMode::kGeometric)
-    for (const auto& instance : instances)
-      if (presumed.count(instance.id) && motionOf(instance.class_name) == ClassMotion::kActive)
-        r.dynamic_instances.insert(instance.id);
   r.dynamic_mask = unionMask(instances, r.dynamic_instances);
   if (!r.dynamic_mask.empty())
     for (size_t i = 0; i < current.size(); ++i)

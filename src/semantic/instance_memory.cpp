@@ -96,7 +96,7 @@ void InstanceMemory::remember(const std::vector<Instance>& instances, const std:
     if (r.unmeasured < max_frames_) next.push_back(r);
   }
   remembered_ = std::move(next);
-  gray_ = gray.clone();
+  gray_ = gray;  // the caller's image of this frame, not written afterwards
 }
 
 }  // namespace ply_slam

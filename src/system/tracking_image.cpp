@@ -10,7 +10,7 @@ cv::Mat drawTrackingImage(const cv::Mat& bgr, const FrameResult& result,
   cv::Mat image = bgr.clone();
   for (const auto& instance : instances) {
     std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(instance.mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+    cv::findContours(instance.mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
     const bool dynamic = result.dynamic_instances.count(instance.id) > 0;
     const cv::Scalar colour = dynamic ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 255);
     cv::drawContours(image, contours, -1, colour, 2);

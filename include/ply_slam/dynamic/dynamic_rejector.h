@@ -26,10 +26,7 @@ struct DynamicRejection {
   std::vector<FeatureFate> fate;     // per feature of the current frame
   std::set<int> dynamic_instances;   // measured moving, or presumed so
   std::set<int> measured_instances;  // those whose own matched features found them moving
-  std::map<int, double> degree;      // r_d per instance that had matched features
   cv::Mat dynamic_mask;              // 8UC1 dilated union of the dynamic instances; empty: none
-  int matched = 0;                   // features matched to the previous frame (Delaunay vertices)
-  size_t dropped() const;
 };
 
 // PAPER.md §3.2 applied to one frame: matches the frame's features to an earlier frame's
@@ -41,23 +38,23 @@ class DynamicRejector {
  public:
   DynamicRejector(const DynamicParams& params, const PinholeCamera& camera);
 
-  DynamicMode mode() const { return mode_; }
   // velocity: the camera's, to predict where the earlier frame's features are now; may be null.
   // presumed: ids of instances to treat as dynamic whatever this frame shows (InstanceMemory)
-  // if their class is an active one (a chair judged moved once stays on its evidence); labels
-  // are only read in semantic and full mode, so geometric mode ignores them.
+  // if their class is an active one (a chair judged moved once stays on its evidence); only
+  // full mode uses them (semantic mode takes every active instance anyway, geometric mode
+  // reads no labels).
   DynamicRejection decide(const FrameFeatures& current, double stamp,
                           const std::vector<Instance>& instances, const CameraVelocity* velocity,
                           const std::set<int>& presumed = {}) const;
   // Keeps the frame's features (all of them, dynamic ones too) for the frames to come.
   void remember(const FrameFeatures& current, double stamp);
 
-  ClassMotion motionOf(const std::string& class_name) const;
   // Lines whose start or end lies on a non-zero pixel of `mask` (PAPER.md §3.2 step 5).
   static std::vector<bool> linesTouching(const std::vector<LineFeature>& lines,
                                          const cv::Mat& mask);
 
  private:
+  ClassMotion motionOf(const std::string& class_name) const;
   std::vector<FeatureCorrespondence> correspondences(
       const FrameFeatures& previous, const FrameFeatures& current,
       const std::optional<Eigen::Isometry3d>& T_cur_prev, std::vector<size_t>& feature_of) const;
