@@ -8,6 +8,14 @@
 
 namespace ply_slam {
 
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& m) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // Without this sign fix a reflection could win for noisy or planar data.
+  Eigen::Vector3d signs(1.0, 1.0, 1.0);
+  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) signs.z() = -1.0;
+  return svd.matrixU() * signs.asDiagonal() * svd.matrixV().transpose();
+}
+
 Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
                              const std::vector<Eigen::Vector3d>& gt) {
   if (est.size() != gt.size() || est.empty()) {
@@ -30,11 +38,7 @@ Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
   for (size_t k = 0; k < est.size(); ++k) {
     cross += (gt[k] - gt_mean) * (est[k] - est_mean).transpose();
   }
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  // Without this sign fix a reflection could win for noisy or planar data.
-  Eigen::Vector3d signs(1.0, 1.0, 1.0);
-  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) signs.z() = -1.0;
-  const Eigen::Matrix3d rotation = svd.matrixU() * signs.asDiagonal() * svd.matrixV().transpose();
+  const Eigen::Matrix3d rotation = nearestRotation(cross);
 
   Eigen::Isometry3d T_gt_est = Eigen::Isometry3d::Identity();
   T_gt_est.linear() = rotation;

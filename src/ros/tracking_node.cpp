@@ -110,8 +110,8 @@ TrackingNode::~TrackingNode() {
                   << ", depth " << depth_received_ - std::min<size_t>(depth_received_, paired)
                   << "), tracked " << tracked_ << ", lost " << lost_ << ", dropped while behind "
                   << behind_dropped_ << ", skipped bad " << bad_input_.total() << " ("
-                  << bad_input_.summary() << "), median "
-                  << (total_ms_.empty() ? 0.0 : upperMedian(total_ms_)) << " ms per frame");
+                  << bad_input_.summary() << "), median " << upperMedian(total_ms_, 0.0)
+                  << " ms per frame");
 }
 
 void TrackingNode::onRgb(const sensor_msgs::ImageConstPtr& rgb) {
@@ -297,7 +297,7 @@ void TrackingNode::publishStats() {
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
-    << " median_ms=" << (total_ms_.empty() ? 0.0 : upperMedian(total_ms_));
+    << " median_ms=" << upperMedian(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

@@ -84,8 +84,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double medianOrNan(const std::vector<double>& v) { return v.empty() ? std::nan("") : median(v); }
-
 double mean(const std::vector<double>& v) {
   if (v.empty()) return std::nan("");
   double sum = 0.0;
@@ -117,10 +115,10 @@ std::string methodJson(const MethodReport& r) {
   out << "{\"rate_mean\": " << number(mean(r.rates)) << ", \"accepted_lines\": " << r.accepted
       << ", \"accepted_lines_matched\": " << r.accepted_matched
       << ", \"endpoint_distances\": " << r.distances_px.size()
-      << ", \"distance_median_px\": " << number(medianOrNan(r.distances_px), 3)
+      << ", \"distance_median_px\": " << number(median(r.distances_px, std::nan("")), 3)
       << ", \"distance_mean_px\": " << number(mean(r.distances_px), 3)
       << ", \"within_2px\": " << number(fraction(r.distances_px, 2.0), 3)
-      << ", \"fitting_ms_median\": " << number(medianOrNan(r.fitting_ms), 3) << "}";
+      << ", \"fitting_ms_median\": " << number(median(r.fitting_ms, std::nan("")), 3) << "}";
   return out.str();
 }
 
@@ -131,12 +129,12 @@ void printMethod(const char* name, const MethodReport& r, int offset) {
             << "    accepted 3D lines                     " << r.accepted << " ("
             << r.accepted_matched << " matched in k+" << offset << ")\n"
             << "    k->k+" << offset << " endpoint-to-line distance    median "
-            << number(medianOrNan(r.distances_px), 3) << " px, mean "
+            << number(median(r.distances_px, std::nan("")), 3) << " px, mean "
             << number(mean(r.distances_px), 3) << " px, <= 2 px "
             << number(100.0 * fraction(r.distances_px, 2.0), 1) << " % (" << r.distances_px.size()
             << " endpoints)\n"
             << "    fitting                               median "
-            << number(medianOrNan(r.fitting_ms), 3) << " ms\n";
+            << number(median(r.fitting_ms, std::nan("")), 3) << " ms\n";
 }
 
 int run(const Options& options) {
@@ -221,10 +219,10 @@ int run(const Options& options) {
               << ", \"sampled\": " << methodJson(sampled)
               << ", \"endpoints\": " << methodJson(endpoints)
               << ", \"timing_ms\": {\"extraction_median\": "
-              << number(medianOrNan(extraction_ms), 3)
-              << ", \"description_median\": " << number(medianOrNan(description_ms), 3)
-              << ", \"fitting_median\": " << number(medianOrNan(sampled.fitting_ms), 3)
-              << ", \"total_median\": " << number(medianOrNan(total_ms), 3) << "}}\n";
+              << number(median(extraction_ms, std::nan("")), 3)
+              << ", \"description_median\": " << number(median(description_ms, std::nan("")), 3)
+              << ", \"fitting_median\": " << number(median(sampled.fitting_ms, std::nan("")), 3)
+              << ", \"total_median\": " << number(median(total_ms, std::nan("")), 3) << "}}\n";
     return 0;
   }
   std::cout << "Line features: " << options.sequence << "\n"
@@ -237,10 +235,11 @@ int run(const Options& options) {
             << number(pairs ? static_cast<double>(gated_total) / pairs : std::nan(""), 1) << ")\n";
   printMethod("PAPER.md §3.1 (sampled, RANSAC, PCA)", sampled, options.offset);
   printMethod("traditional (endpoint depth)", endpoints, options.offset);
-  std::cout << "  time per frame (median)  extraction " << number(medianOrNan(extraction_ms), 2)
-            << " ms, description " << number(medianOrNan(description_ms), 2) << " ms, fitting "
-            << number(medianOrNan(sampled.fitting_ms), 2) << " ms, total "
-            << number(medianOrNan(total_ms), 2) << " ms\n";
+  std::cout << "  time per frame (median)  extraction "
+            << number(median(extraction_ms, std::nan("")), 2) << " ms, description "
+            << number(median(description_ms, std::nan("")), 2) << " ms, fitting "
+            << number(median(sampled.fitting_ms, std::nan("")), 2) << " ms, total "
+            << number(median(total_ms, std::nan("")), 2) << " ms\n";
   return 0;
 }
 

@@ -27,6 +27,7 @@
 #include "ply_slam/dense/semantic_octree.h"
 #include "ply_slam/dense/voxel_agreement.h"
 #include "ply_slam/eval/pose_interpolation.h"
+#include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
@@ -95,11 +96,8 @@ Eigen::Isometry3d alignPoses(const std::vector<Eigen::Isometry3d>& est,
                              const std::vector<Eigen::Isometry3d>& gt) {
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
   for (size_t i = 0; i < est.size(); ++i) sum += est[i].linear() * gt[i].linear().transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = svd.matrixU() * d * svd.matrixV().transpose();
+  T.linear() = nearestRotation(sum);
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < est.size(); ++i)
     t += est[i].translation() - T.linear() * gt[i].translation();
@@ -145,10 +143,13 @@ AlignedGroundTruth alignGroundTruth(const Trajectory& gt, const Trajectory& keyf
   return a;
 }
 
-// The offset in [-30, 30] ms (0.5 ms steps) with the smallest keyframe rotation error.
-AlignedGroundTruth fitClockOffset(const Trajectory& gt, const Trajectory& keyframes) {
-  AlignedGroundTruth best = alignGroundTruth(gt, keyframes, 0.0);
+// The offset in [-30, 30] ms (0.5 ms steps) with the smallest keyframe rotation error;
+// `recorded` (offset 0) unless another is smaller.
+AlignedGroundTruth fitClockOffset(const Trajectory& gt, const Trajectory& keyframes,
+                                  const AlignedGroundTruth& recorded) {
+  AlignedGroundTruth best = recorded;
   for (int step = -60; step <= 60; ++step) {
+    if (step == 0) continue;
     try {
       AlignedGroundTruth a = alignGroundTruth(gt, keyframes, step * 0.0005);
       if (a.rotation_rmse_deg < best.rotation_rmse_deg) best = std::move(a);
@@ -184,7 +185,7 @@ int run(const Options& options) {
   const Trajectory& gt = sequence.groundTruth();
   const AlignedGroundTruth recorded = alignGroundTruth(gt, keyframes, options.clock_offset);
   const AlignedGroundTruth fitted =
-      options.fit_clock_offset ? fitClockOffset(gt, keyframes) : recorded;
+      options.fit_clock_offset ? fitClockOffset(gt, keyframes, recorded) : recorded;
 
   const DenseParams& dense = config.dense;
   const ClassPalette palette = ClassPalette::configured(dense.palette);
@@ -213,8 +214,9 @@ int run(const Options& options) {
       at_fitted.insert(cloud);
     }
   }
+  const auto estimated_voxels = estimated.occupiedVoxels();
   const auto compare = [&](const SemanticOctree& ground_truth) {
-    return compareOccupiedVoxels(estimated.occupiedVoxels(), ground_truth.occupiedVoxels(),
+    return compareOccupiedVoxels(estimated_voxels, ground_truth.occupiedVoxels(),
                                  dense.octree_resolution);
   };
   const VoxelAgreement r = compare(options.fit_clock_offset ? at_fitted : at_recorded);

@@ -85,8 +85,6 @@ Eigen::Isometry3d nearestPose(const ply_slam::Trajectory& trajectory, double sta
   return best == trajectory.end() ? Eigen::Isometry3d::Identity() : best->T_wc;
 }
 
-double medianOrZero(const std::vector<double>& v) { return v.empty() ? 0.0 : ply_slam::median(v); }
-
 int run(const Options& options) {
   const ply_slam::SystemConfig config = ply_slam::loadConfig(options.config);
   const ply_slam::PinholeCamera& camera = config.camera;
@@ -151,7 +149,7 @@ int run(const Options& options) {
   if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
   ply_slam::writeTumTrajectory(options.out, trajectory);
 
-  const double median_ms = medianOrZero(compute_ms);
+  const double median_ms = ply_slam::median(compute_ms, 0.0);
   const double mean_ms = compute_ms.empty()
                              ? 0.0
                              : std::accumulate(compute_ms.begin(), compute_ms.end(), 0.0) /

@@ -27,10 +27,6 @@ namespace {
   std::exit(2);
 }
 
-double medianOrNan(const std::vector<double>& v) {
-  return v.empty() ? std::nan("") : upperMedian(v);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,11 +100,12 @@ int main(int argc, char** argv) {
     }
     std::cout << std::fixed << std::setprecision(1)
               << fs::path(params.model_path).filename().string() << ": " << ms.size() << " frames, "
-              << medianOrNan(ms) << " ms median per frame";
+              << upperMedian(ms, std::nan("")) << " ms median per frame";
     if (truth) {
       const long missed = std::count_if(ious.begin(), ious.end(), [](double x) { return x < 0.3; });
-      std::cout << std::setprecision(3) << ", person mask IoU median " << medianOrNan(ious)
-                << " over " << ious.size() << " views (walkers > 2 % of the image), " << missed
+      std::cout << std::setprecision(3) << ", person mask IoU median "
+                << upperMedian(ious, std::nan("")) << " over " << ious.size()
+                << " views (walkers > 2 % of the image), " << missed
                 << " of them missed (IoU < 0.3)";
     }
     std::cout << "\n";

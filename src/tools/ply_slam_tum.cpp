@@ -117,9 +117,11 @@ Options parse(int argc, char** argv) {
   }
   if (o.segmenter != "none" && o.segmenter != "masks" && o.segmenter != "yolo")
     usage("unknown segmenter '" + o.segmenter + "' (none, masks or yolo)");
-  if (!o.dynamic.empty() && o.dynamic != "off" && o.dynamic != "geometric" &&
-      o.dynamic != "semantic" && o.dynamic != "full")
-    usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
+  if (!o.dynamic.empty()) try {
+      parseDynamicMode(o.dynamic);
+    } catch (const std::invalid_argument&) {
+      usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
+    }
   if (o.live && o.segmenter == "none") usage("--live needs a segmenter");
   if (o.sequence.empty() || o.config.empty() || o.out.empty())
     usage("--sequence, --config and --out are required");
@@ -157,12 +159,12 @@ std::string jsonStats(const ErrorStats& s) {
 
 // Dense and semantic octree maps (issue #7) ---------------------------------------------------
 
-// The people of the ground-truth masks (undilated): what a ghost in the maps would come from.
-// The ground-truth masks of the moving things (active classes) in one frame.
-cv::Mat walkerPixels(MaskFolderSegmenter& masks, const RgbdImages& images,
+// The ground-truth masks of the moving things (active classes) in one frame, undilated: what
+// a ghost in the maps would come from.
+cv::Mat walkerPixels(const std::vector<Instance>& ground_truth, const cv::Size& size,
                      const DynamicParams& dynamic) {
-  cv::Mat walkers = cv::Mat::zeros(images.rgb.size(), CV_8UC1);
-  for (const auto& instance : masks.segment(images))
+  cv::Mat walkers = cv::Mat::zeros(size, CV_8UC1);
+  for (const auto& instance : ground_truth)
     if (std::count(dynamic.active_classes.begin(), dynamic.active_classes.end(),
                    instance.class_name))
       walkers |= instance.mask;
@@ -264,6 +266,11 @@ int run(const Options& options) {
   // Where there are ground-truth masks of the moving objects, the dynamic rejection and the
   // dense maps are scored against them.
   const std::unique_ptr<MaskFolderSegmenter> walker_masks = groundTruthMasks(options, sequence);
+  // Offline with the sequence's own masks as segmenter, its instances are the ground truth:
+  // no second read of every mask.
+  const bool segmenter_is_ground_truth =
+      walker_masks && !options.live && options.segmenter == "masks" &&
+      (options.ground_truth_masks.empty() || options.ground_truth_masks == sequence.folder());
   FeatureClassification classification;
   if (options.save_images > 0) fs::create_directories(out / "images");
   System system(config);
@@ -305,7 +312,10 @@ int run(const Options& options) {
       }
       r = system.process(images, instances);
       const cv::Mat walkers =
-          walker_masks ? walkerPixels(*walker_masks, images, config.dynamic) : cv::Mat();
+          !walker_masks ? cv::Mat()
+          : segmenter_is_ground_truth
+              ? walkerPixels(instances, images.rgb.size(), config.dynamic)
+              : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
       if (walker_masks) classification.add(r.features, walkers);
       if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
     } catch (const std::exception& e) {

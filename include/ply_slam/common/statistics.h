@@ -21,4 +21,12 @@ inline double median(std::vector<double> values) {
   return 0.5 * (values[k] + *std::max_element(values.begin(), values.begin() + k));
 }
 
+// The same, with `if_empty` for no values (reports of runs that may have none).
+inline double upperMedian(const std::vector<double>& values, double if_empty) {
+  return values.empty() ? if_empty : upperMedian(values);
+}
+inline double median(const std::vector<double>& values, double if_empty) {
+  return values.empty() ? if_empty : median(values);
+}
+
 }  // namespace ply_slam
