@@ -128,6 +128,7 @@ void readLines(Section s, LineParams& l) {
     s.fail("detector", "must be auto, lsd or edlines");
   s.readPositive("lsd_scale", l.lsd_scale);
   if (l.lsd_scale > 1.0) s.fail("lsd_scale", "must be <= 1");
+  s.read("refine_edges", l.refine_edges);
   s.readPositive("merge_angle_deg", l.merge_angle_deg);
   if (l.merge_angle_deg >= 90.0) s.fail("merge_angle_deg", "must be < 90");
   s.readPositive("merge_distance_px", l.merge_distance_px);

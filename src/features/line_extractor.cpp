@@ -7,6 +7,8 @@
 #include <opencv2/line_descriptor.hpp>
 #include <stdexcept>
 
+#include "ply_slam/features/edge_refiner.h"
+
 namespace ply_slam {
 
 namespace {
@@ -128,7 +130,28 @@ std::vector<LineFeature> LineExtractor::detect(const cv::Mat& gray,
       lines.end());
   if (params_.max_lines > 0 && lines.size() > static_cast<size_t>(params_.max_lines))
     lines.resize(params_.max_lines);
+  refineOnEdges(gray, camera, lines);
   return lines;
+}
+
+void LineExtractor::refineOnEdges(const cv::Mat& gray, const PinholeCamera& camera,
+                                  std::vector<LineFeature>& lines) const {
+  if (!params_.refine_edges) return;
+  std::vector<size_t> moved;
+  std::vector<cv::Point2f> raw;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (!EdgeRefiner::refine(gray, lines[i].raw_start, lines[i].raw_end)) continue;
+    moved.push_back(i);
+    raw.emplace_back(lines[i].raw_start.x(), lines[i].raw_start.y());
+    raw.emplace_back(lines[i].raw_end.x(), lines[i].raw_end.y());
+  }
+  std::vector<cv::Point2f> undistorted = raw;
+  if (camera.hasDistortion() && !raw.empty())
+    cv::undistortPoints(raw, undistorted, camera.K(), camera.distortion, cv::noArray(), camera.K());
+  for (size_t k = 0; k < moved.size(); ++k) {
+    lines[moved[k]].start = Eigen::Vector2d(undistorted[2 * k].x, undistorted[2 * k].y);
+    lines[moved[k]].end = Eigen::Vector2d(undistorted[2 * k + 1].x, undistorted[2 * k + 1].y);
+  }
 }
 
 cv::Mat LineExtractor::describe(const cv::Mat& gray, const std::vector<LineFeature>& lines) const {

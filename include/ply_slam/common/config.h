@@ -33,6 +33,7 @@ struct LineParams {
   double residual_sigma_px = 1.0;    // B = sigma^2 I of the line residual in pose optimisation
   std::string detector = "auto";     // "lsd", "edlines", or "auto": LSD where OpenCV has it
   double lsd_scale = 0.4;            // LSD's Gaussian sub-sampling of the image (1 = full size)
+  bool refine_edges = true;          // segments moved onto the full-resolution edge (EdgeRefiner)
   double merge_angle_deg = 3.0;      // pieces of one edge: directions within this angle,
   double merge_distance_px = 2.0;    // endpoints this close to the other piece's line,
   double merge_gap_px = 20.0;        // and at most this gap between them

@@ -30,7 +30,8 @@ class LineExtractor {
   static bool lsdAvailable();
 
   // Segments of a grey raw image: detected, oriented by polarity, undistorted, merged,
-  // shorter than min_length_px dropped, the max_lines longest kept (longest first).
+  // shorter than min_length_px dropped, the max_lines longest kept (longest first) and
+  // moved onto the full-resolution edge (EdgeRefiner).
   std::vector<LineFeature> detect(const cv::Mat& gray, const PinholeCamera& camera) const;
   // LBD descriptors (N x 32 CV_8U, row i for lines[i]) at the raw segments.
   cv::Mat describe(const cv::Mat& gray, const std::vector<LineFeature>& lines) const;
@@ -39,6 +40,9 @@ class LineExtractor {
 
  private:
   std::vector<cv::Vec4f> detectRaw(const cv::Mat& gray) const;
+  // EdgeRefiner on each segment (lines.refine_edges), undistorted ends updated.
+  void refineOnEdges(const cv::Mat& gray, const PinholeCamera& camera,
+                     std::vector<LineFeature>& lines) const;
 
   LineParams params_;
   LineMerger merger_;
