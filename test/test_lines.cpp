@@ -271,7 +271,7 @@ TEST(LineExtraction, RefinedEdgesLieOnTheDrawnEdges) {
     return sum / 8.0;
   };
   const double refined = offset(true), detected = offset(false);
-  std::cout << "[ measured ] drawn edges, mean end offset: LSD at 0.4 " << detected
+  std::cout << "[ measured ] drawn edges, mean end offset: LSD " << detected
             << " px, refined " << refined << " px\n";
   EXPECT_LT(refined, 0.05);
   EXPECT_LT(refined, 0.5 * detected);
@@ -644,7 +644,9 @@ TEST(LineMatcher, GatesOnAngleDistanceAndOverlap) {
 TEST(LineConfig, ShippedFr1SectionAndStrictKeys) {
   const SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
   EXPECT_EQ(config.lines.detector, "auto");
-  EXPECT_DOUBLE_EQ(config.lines.lsd_scale, 0.4);
+  EXPECT_DOUBLE_EQ(config.lines.lsd_scale, 0.35);
+  EXPECT_EQ(config.lines.lbd_band_width, 5);
+  EXPECT_TRUE(config.lines.refine_edges);
   EXPECT_EQ(config.lines.depth_search_px, 3);
   EXPECT_DOUBLE_EQ(config.lines.min_inlier_ratio, 0.25);
   EXPECT_DOUBLE_EQ(config.lines.chi2_inlier, 5.991);

@@ -32,7 +32,7 @@ struct LineParams {
   std::string balance = "paper";     // F(n) of the line term: "paper" 2n/50, "one" F = 1
   double residual_sigma_px = 1.0;    // B = sigma^2 I of the line residual in pose optimisation
   std::string detector = "auto";     // "lsd", "edlines", or "auto": LSD where OpenCV has it
-  double lsd_scale = 0.4;            // LSD's Gaussian sub-sampling of the image (1 = full size)
+  double lsd_scale = 0.35;           // LSD's Gaussian sub-sampling of the image (1 = full size)
   bool refine_edges = true;          // segments moved onto the full-resolution edge (EdgeRefiner)
   double merge_angle_deg = 3.0;      // pieces of one edge: directions within this angle,
   double merge_distance_px = 2.0;    // endpoints this close to the other piece's line,
@@ -40,7 +40,7 @@ struct LineParams {
   double min_length_px = 25.0;       // shorter segments (after merging) are dropped
   int max_lines = 150;               // the longest are kept; 0 = all
   double lbd_scale = 0.5;            // image scale the LBD descriptors are computed at (1 = full)
-  int lbd_band_width = 7;            // px per band of the LBD descriptor (9 bands), at lbd_scale
+  int lbd_band_width = 5;            // px per band of the LBD descriptor (9 bands), at lbd_scale
   int depth_search_px = 3;           // px across the line searched where a sample has no depth
   double sigma_px = 1.0;             // image noise of a sample (Lambda's image terms, px)
   double chi2_inlier = 5.991;        // Mahalanobis^2 of a sample to the RANSAC line: inlier below
