@@ -58,15 +58,16 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   Stopwatch total;
   cv::Mat gray;
   cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
-  // Lines (when enabled) on a second thread beside ORB: neither needs the other.
-  std::future<FrameLines> lines;
+  // Lines (when enabled): the segments are detected on a second thread beside ORB, then
+  // described (here) and fitted in 3D (there) side by side: neither needs the other.
+  std::future<std::vector<LineFeature>> segments;
+  double detection_ms = 0.0;
   if (line_extractor_) {
-    lines = std::async(std::launch::async, [&] {
+    segments = std::async(std::launch::async, [&] {
       Stopwatch watch;
-      FrameLines f =
-          FrameLines::extract(gray, images.depth, config_.camera, *line_extractor_, *line_fitter_);
-      result.timing.lines_ms = watch.elapsedMs();
-      return f;
+      std::vector<LineFeature> detected = line_extractor_->detect(gray, config_.camera);
+      detection_ms = watch.elapsedMs();
+      return detected;
     });
   }
   FrameFeatures features =
@@ -79,8 +80,16 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   result.instances = judged;
   Frame frame(result.frame_id, images.stamp, std::move(features));
   result.timing.features_ms = total.elapsedMs();
-  if (lines.valid()) {
-    FrameLines frame_lines = lines.get();
+  if (segments.valid()) {
+    FrameLines frame_lines;
+    frame_lines.lines = segments.get();
+    Stopwatch watch;
+    std::future<void> fitted = std::async(std::launch::async, [&] {
+      frame_lines.fit(images.depth, *line_fitter_, LineFitMethod::kSampled);
+    });
+    frame_lines.descriptors = line_extractor_->describe(gray, frame_lines.lines);
+    fitted.get();
+    result.timing.lines_ms = detection_ms + watch.elapsedMs();
     if (tracker_.velocity()) frame_lines.correctMotion(config_.camera, *tracker_.velocity());
     result.dynamic_lines = frame_lines.removeIf(
         DynamicRejector::linesTouching(frame_lines.lines, result.dynamic_mask));

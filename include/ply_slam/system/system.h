@@ -23,8 +23,8 @@ namespace ply_slam {
 // Milliseconds spent on one frame, per stage.
 struct FrameTiming {
   double features_ms = 0.0;  // grey conversion, ORB, undistortion, depth lookup
-  double lines_ms = 0.0;     // line detection, LBD, 3D fitting (0 when disabled); beside ORB on a
-                             // second thread, so total_ms holds the longer of the two only
+  double lines_ms = 0.0;     // line detection (beside ORB on a second thread), then LBD and 3D
+                             // fitting side by side (0 when disabled); not a share of total_ms
   double tracking_ms = 0.0;  // matching, pose optimisation, keyframe insertion
   double total_ms = 0.0;     // features + lines + tracking: what the frame costs the tracking side
   double mapping_ms = 0.0;   // local bundle adjustment after a new keyframe (mapping side)
