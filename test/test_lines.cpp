@@ -271,8 +271,8 @@ TEST(LineExtraction, RefinedEdgesLieOnTheDrawnEdges) {
     return sum / 8.0;
   };
   const double refined = offset(true), detected = offset(false);
-  std::cout << "[ measured ] drawn edges, mean end offset: LSD " << detected
-            << " px, refined " << refined << " px\n";
+  std::cout << "[ measured ] drawn edges, mean end offset: LSD " << detected << " px, refined "
+            << refined << " px\n";
   EXPECT_LT(refined, 0.05);
   EXPECT_LT(refined, 0.5 * detected);
 }

@@ -8,12 +8,12 @@
 namespace ply_slam {
 namespace {
 
-constexpr double kStep = 0.5;       // px between profile samples
-constexpr int kHalf = 6;            // profile samples each side: +-3 px
-constexpr double kMinRise = 4.0;    // grey levels per half pixel: weaker is no edge
+constexpr double kStep = 0.5;          // px between profile samples
+constexpr int kHalf = 6;               // profile samples each side: +-3 px
+constexpr double kMinRise = 4.0;       // grey levels per half pixel: weaker is no edge
 constexpr double kMaxResidual = 0.75;  // px off the first fit: dropped
-constexpr double kMaxShift = 2.0;   // px the refined line may move an end
-constexpr double kMaxTurn = 3.0;    // degrees it may turn the segment
+constexpr double kMaxShift = 2.0;      // px the refined line may move an end
+constexpr double kMaxTurn = 3.0;       // degrees it may turn the segment
 
 bool bilinear(const cv::Mat& gray, const Eigen::Vector2d& p, double& value) {
   const double x = p.x(), y = p.y();

@@ -6,8 +6,8 @@
 namespace ply_slam {
 
 // Moves a detected segment onto the full-resolution edge it lies on. LSD run on a
-// sub-sampled image (lines.lsd_scale 0.4) places edges to about half a pixel of the full
-// image; the 3D fit reads depth beside the line, so at a surface seen at a grazing angle 4 m
+// sub-sampled image (lines.lsd_scale) places edges to about half a pixel of the full image;
+// the 3D fit reads depth at and beside the line, so at a surface seen at a grazing angle 4 m
 // away that half pixel is 1-2 cm of depth. Along the segment the grey profile across it is
 // sampled (bilinear, half-pixel steps), the strongest rise towards the brighter side (the
 // segment's left) located to sub-pixel by a parabola, and a line fitted to those edge points
