@@ -283,16 +283,20 @@ TEST_F(ConfigFileTest, DistortionNeedsFourOrFiveCoefficients) {
 // The dense section (issue #7): values are read, and bad ones are named.
 TEST_F(ConfigFileTest, DenseSection) {
   const std::string base = kValidYaml;
-  const SystemConfig config = loadConfig(write(
-      "dense.yaml", base + "dense:\n  stride: 4\n  colour_mode: rgb\n  octree_occupancy: 0.7\n"));
+  const SystemConfig config =
+      loadConfig(write("dense.yaml", base + "dense:\n  stride: 4\n  colour_mode: rgb\n  "
+                                            "octree_occupancy: 0.7\n  ray_margin: 0.05\n"));
   EXPECT_EQ(config.dense.stride, 4);
   EXPECT_EQ(config.dense.colour_mode, "rgb");
   EXPECT_DOUBLE_EQ(config.dense.octree_occupancy, 0.7);
+  EXPECT_DOUBLE_EQ(config.dense.ray_margin, 0.05);
   EXPECT_DOUBLE_EQ(config.dense.octree_resolution, DenseParams().octree_resolution);
   expectConfigError(write("mode.yaml", base + "dense:\n  colour_mode: hue\n"),
                     {"dense.colour_mode", "class or rgb"});
   expectConfigError(write("occ.yaml", base + "dense:\n  octree_occupancy: 0.3\n"),
                     {"dense.octree_occupancy"});
+  expectConfigError(write("margin.yaml", base + "dense:\n  ray_margin: -0.1\n"),
+                    {"dense.ray_margin"});
   expectConfigError(write("range.yaml", base + "dense:\n  min_depth: 2\n  max_depth: 1\n"),
                     {"dense.max_depth"});
   expectConfigError(write("key.yaml", base + "dense:\n  voxel: 0.02\n"),

@@ -117,6 +117,33 @@ TEST(SemanticOctree, OccupancyThresholdAsksForRepeatedHits) {
                std::invalid_argument);
 }
 
+TEST(SemanticOctree, RaysStopShortOfTheirHitByTheMargin) {
+  // One keyframe hits a surface voxel, three later rays end one voxel behind it (depth noise,
+  // a pose a little off). OctoMap's rays clear the surface voxel; rays that stop 10 cm short
+  // of their hit leave it, and still clear a voxel well in front.
+  auto onePoint = [](float z) {
+    KeyFrameCloud cloud;
+    cloud.points = std::make_shared<DenseCloud>();
+    pcl::PointXYZRGBL p;
+    p.x = p.y = 0.01f;
+    p.z = z;
+    p.label = ClassPalette::kUnknown;
+    cloud.points->push_back(p);
+    return cloud;
+  };
+  for (const double margin : {0.0, 0.1}) {
+    SemanticOctree octree(0.05, SemanticOctree::ColourMode::kClass, ClassPalette(), 0.5, margin);
+    octree.insert(onePoint(3.02f));  // the surface voxel [3.00, 3.05)
+    octree.insert(onePoint(1.02f));  // something that was there once
+    for (int k = 0; k < 3; ++k) octree.insert(onePoint(3.07f));
+    EXPECT_EQ(octree.isOccupied({0.01, 0.01, 3.02}), margin > 0.0) << "margin " << margin;
+    EXPECT_TRUE(octree.isOccupied({0.01, 0.01, 3.07})) << "margin " << margin;
+    EXPECT_FALSE(octree.isOccupied({0.01, 0.01, 1.02})) << "margin " << margin;
+  }
+  EXPECT_THROW(SemanticOctree(0.05, SemanticOctree::ColourMode::kClass, ClassPalette(), 0.5, -0.1),
+               std::invalid_argument);
+}
+
 TEST(SemanticOctree, VoxelsTakeTheirMajorityClassAndCountTaggedHits) {
   SemanticOctree octree(0.05, SemanticOctree::ColourMode::kClass, ClassPalette());
   const ClassPalette palette;

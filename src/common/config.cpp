@@ -246,6 +246,9 @@ void readDense(Section s, DenseParams& d) {
   s.read("octree_occupancy", d.octree_occupancy);
   if (!(d.octree_occupancy >= 0.5 && d.octree_occupancy < 0.97))
     s.fail("octree_occupancy", "must be within [0.5, 0.97)");
+  s.read("ray_margin", d.ray_margin);
+  if (!(d.ray_margin >= 0.0 && d.ray_margin <= 1.0))
+    s.fail("ray_margin", "must be within [0, 1] m");
   s.read("octree_filter", d.octree_filter);
   s.read("colour_mode", d.colour_mode);
   if (d.colour_mode != "class" && d.colour_mode != "rgb")

@@ -13,7 +13,7 @@ DenseMappingWorker::DenseMappingWorker(const DenseParams& params, const ClassPal
     : builder_(params, palette),
       map_(params.voxel_size),
       octree_(params.octree_resolution, SemanticOctree::parseColourMode(params.colour_mode),
-              palette, params.octree_occupancy) {
+              palette, params.octree_occupancy, params.ray_margin) {
   if (params.octree_filter) map_.keepOnlyOccupied(&octree_);
   thread_ = std::thread([this] { run(); });
 }

@@ -192,7 +192,8 @@ int run(const Options& options) {
   const KeyFrameCloudBuilder builder(dense, palette);
   const auto mode = SemanticOctree::parseColourMode(dense.colour_mode);
   const auto octree = [&] {
-    return SemanticOctree(dense.octree_resolution, mode, palette, dense.octree_occupancy);
+    return SemanticOctree(dense.octree_resolution, mode, palette, dense.octree_occupancy,
+                          dense.ray_margin);
   };
   SemanticOctree estimated = octree(), at_recorded = octree(), at_fitted = octree();
   for (size_t i = 0; i < keyframes.size(); ++i) {

@@ -138,6 +138,9 @@ struct DenseParams {
   // OctoMap probability from which a voxel counts as occupied. A hit adds 0.85 log-odds, a
   // ray through takes 0.41: 0.5 = one hit; 0.88 = at least three hits more than... (see yaml)
   double octree_occupancy = 0.88;
+  // m; a ray frees the voxels it passes only up to this short of its hit, whose place is
+  // uncertain by the depth noise and the keyframe's pose (see yaml)
+  double ray_margin = 0.1;
   bool octree_filter = true;          // the dense cloud keeps only points in occupied octree voxels
   std::string colour_mode = "class";  // octree voxel colour: "class" (palette) or "rgb"
   std::string palette;  // file of "class r g b" lines overriding the built-in palette; "" = none

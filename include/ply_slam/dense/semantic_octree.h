@@ -35,7 +35,10 @@ class SemanticOctree {
   };
 
   // `occupancy`: the probability from which a voxel counts as occupied (OctoMap default 0.5).
-  SemanticOctree(double resolution, ColourMode mode, ClassPalette palette, double occupancy = 0.5);
+  // `ray_margin` (m): a ray to a point frees the voxels it passes only up to this short of
+  // the point (0: up to the point's voxel, as OctoMap).
+  SemanticOctree(double resolution, ColourMode mode, ClassPalette palette, double occupancy = 0.5,
+                 double ray_margin = 0.0);
   ~SemanticOctree();
   SemanticOctree(const SemanticOctree&) = delete;
   SemanticOctree& operator=(const SemanticOctree&) = delete;
@@ -44,7 +47,7 @@ class SemanticOctree {
 
   // Ray-casts the keyframe's points and clearing rays (placed by cloud.T_wc) from its camera
   // centre. One update per voxel and keyframe: occupied if a point ends in it, else free if a
-  // ray passes it.
+  // ray passes it (rays to points stop ray_margin short of them).
   void insert(const KeyFrameCloud& cloud);
   void clear();  // empty tree and histograms (before re-inserting after a pose correction)
 
@@ -66,6 +69,7 @@ class SemanticOctree {
   std::unique_ptr<Impl> impl_;
   ClassPalette palette_;
   ColourMode mode_;
+  double ray_margin_;
 };
 
 }  // namespace ply_slam
