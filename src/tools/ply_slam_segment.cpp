@@ -3,6 +3,7 @@
 //   ply_slam_segment --sequence DIR --model ONNX --input WxH [--classes FILE] [--every N]
 //                    [--save DIR]
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -48,7 +49,11 @@ int main(int argc, char** argv) {
           params.input_width <= 0 || params.input_height <= 0)
         usage("--input needs WxH, e.g. 640x480");
     } else if (arg == "--every") {
-      every = std::max(1, std::atoi(value.c_str()));
+      char* end = nullptr;
+      const long n = std::strtol(value.c_str(), &end, 10);
+      if (value.empty() || *end != '\0' || n < 1 || n > 100000)
+        usage("--every needs a whole number >= 1, got '" + value + "'");
+      every = static_cast<int>(n);
     } else if (arg == "--save") {
       save_dir = value;
     } else {
