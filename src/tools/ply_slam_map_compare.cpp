@@ -66,7 +66,10 @@ Options parse(int argc, char** argv) {
     else if (arg == "--clock-offset")
       try {
         o.fit_clock_offset = value == "auto";
-        if (!o.fit_clock_offset) o.clock_offset = std::stod(value);
+        size_t used = 0;
+        if (!o.fit_clock_offset) o.clock_offset = std::stod(value, &used);
+        if (!o.fit_clock_offset && (used != value.size() || !std::isfinite(o.clock_offset)))
+          throw std::invalid_argument(value);
       } catch (const std::exception&) {
         usage("--clock-offset needs auto or seconds, not " + value);
       }
