@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/calib3d.hpp>
 
 #include "ply_slam/features/orb_extractor.h"
 
@@ -50,13 +49,9 @@ FrameFeatures FrameFeatures::extract(const cv::Mat& gray, const cv::Mat& depth_m
   extractor.extract(gray, f.keypoints, f.descriptors);
 
   const size_t n = f.keypoints.size();
-  std::vector<cv::Point2f> raw(n), rectified;
+  std::vector<cv::Point2f> raw(n);
   for (size_t i = 0; i < n; ++i) raw[i] = f.keypoints[i].pt;
-  if (camera.hasDistortion() && n > 0) {
-    cv::undistortPoints(raw, rectified, camera.K(), camera.distortion, cv::noArray(), camera.K());
-  } else {
-    rectified = raw;
-  }
+  const std::vector<cv::Point2f> rectified = camera.undistortPixels(raw);
   f.rectified.resize(n);
   for (size_t i = 0; i < n; ++i) f.rectified[i] = Eigen::Vector2d(rectified[i].x, rectified[i].y);
   f.depth_image = depth_m;

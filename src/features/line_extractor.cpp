@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/line_descriptor.hpp>
 #include <stdexcept>
@@ -104,16 +103,12 @@ std::vector<LineFeature> LineExtractor::detect(const cv::Mat& gray,
   }
 
   const size_t n = segments.size();
-  std::vector<cv::Point2f> raw(2 * n), undistorted;
+  std::vector<cv::Point2f> raw(2 * n);
   for (size_t i = 0; i < n; ++i) {
     raw[2 * i] = cv::Point2f(segments[i][0], segments[i][1]);
     raw[2 * i + 1] = cv::Point2f(segments[i][2], segments[i][3]);
   }
-  if (camera.hasDistortion() && n > 0) {
-    cv::undistortPoints(raw, undistorted, camera.K(), camera.distortion, cv::noArray(), camera.K());
-  } else {
-    undistorted = raw;
-  }
+  const std::vector<cv::Point2f> undistorted = camera.undistortPixels(raw);
   std::vector<LineFeature> lines(n);
   for (size_t i = 0; i < n; ++i) {
     LineFeature& l = lines[i];
@@ -145,9 +140,7 @@ void LineExtractor::refineOnEdges(const cv::Mat& gray, const PinholeCamera& came
     raw.emplace_back(lines[i].raw_start.x(), lines[i].raw_start.y());
     raw.emplace_back(lines[i].raw_end.x(), lines[i].raw_end.y());
   }
-  std::vector<cv::Point2f> undistorted = raw;
-  if (camera.hasDistortion() && !raw.empty())
-    cv::undistortPoints(raw, undistorted, camera.K(), camera.distortion, cv::noArray(), camera.K());
+  const std::vector<cv::Point2f> undistorted = camera.undistortPixels(raw);
   for (size_t k = 0; k < moved.size(); ++k) {
     lines[moved[k]].start = Eigen::Vector2d(undistorted[2 * k].x, undistorted[2 * k].y);
     lines[moved[k]].end = Eigen::Vector2d(undistorted[2 * k + 1].x, undistorted[2 * k + 1].y);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <vector>
 
 namespace ply_slam {
 
@@ -40,6 +41,8 @@ struct PinholeCamera {
   // When raw image row v was read, relative to the middle row (the stamp): rolling shutter.
   double rowTime(double v) const { return (v / height - 0.5) * rolling_shutter_readout; }
   bool hasDistortion() const;
+  // Undistorted pixels of raw image pixels (the same pixels when there is no distortion).
+  std::vector<cv::Point2f> undistortPixels(const std::vector<cv::Point2f>& raw) const;
   cv::Matx33d K() const { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
 };
 
