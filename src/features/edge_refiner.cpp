@@ -1,9 +1,10 @@
 #include "ply_slam/features/edge_refiner.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include "ply_slam/features/weighted_line_fit.h"
 
 namespace ply_slam {
 namespace {
@@ -26,32 +27,6 @@ bool bilinear(const cv::Mat& gray, const Eigen::Vector2d& p, double& value) {
   return true;
 }
 
-struct EdgePoint {
-  Eigen::Vector2d p;
-  double weight;
-};
-
-// Weighted least-squares line: centroid and unit direction. False when degenerate.
-bool fitLine(const std::vector<EdgePoint>& points, Eigen::Vector2d& centroid,
-             Eigen::Vector2d& direction) {
-  double w_sum = 0.0;
-  centroid.setZero();
-  for (const auto& e : points) {
-    centroid += e.weight * e.p;
-    w_sum += e.weight;
-  }
-  if (w_sum <= 0.0) return false;
-  centroid /= w_sum;
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const auto& e : points) {
-    const Eigen::Vector2d r = e.p - centroid;
-    scatter += e.weight * r * r.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-  direction = eig.eigenvectors().col(1);
-  return eig.eigenvalues()(1) > 0.0;
-}
-
 }  // namespace
 
 bool EdgeRefiner::refine(const cv::Mat& gray, Eigen::Vector2d& start, Eigen::Vector2d& end) {
@@ -62,7 +37,7 @@ bool EdgeRefiner::refine(const cv::Mat& gray, Eigen::Vector2d& start, Eigen::Vec
   const Eigen::Vector2d left(d.y(), -d.x());  // the brighter side
   const int samples = std::clamp(static_cast<int>(length / 2.0), 4, 64);
 
-  std::vector<EdgePoint> points;
+  std::vector<WeightedPoint2> points;
   points.reserve(samples);
   double profile[2 * kHalf + 1];
   for (int k = 0; k < samples; ++k) {
@@ -87,14 +62,14 @@ bool EdgeRefiner::refine(const cv::Mat& gray, Eigen::Vector2d& start, Eigen::Vec
   }
   const size_t needed = std::max<size_t>(4, samples / 3);
   Eigen::Vector2d centroid, direction;
-  if (points.size() < needed || !fitLine(points, centroid, direction)) return false;
+  if (points.size() < needed || !fitWeightedLine(points, centroid, direction)) return false;
   const Eigen::Vector2d normal(-direction.y(), direction.x());
   points.erase(std::remove_if(points.begin(), points.end(),
-                              [&](const EdgePoint& e) {
+                              [&](const WeightedPoint2& e) {
                                 return std::abs(normal.dot(e.p - centroid)) > kMaxResidual;
                               }),
                points.end());
-  if (points.size() < needed || !fitLine(points, centroid, direction)) return false;
+  if (points.size() < needed || !fitWeightedLine(points, centroid, direction)) return false;
 
   if (direction.dot(d) < 0.0) direction = -direction;
   if (std::acos(std::min(1.0, direction.dot(d))) * 180.0 / M_PI > kMaxTurn) return false;

@@ -1,8 +1,9 @@
 #include "ply_slam/features/line_merger.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "ply_slam/features/weighted_line_fit.h"
 
 namespace ply_slam {
 
@@ -17,21 +18,10 @@ constexpr double kPi = 3.14159265358979323846;
 LineFeature join(const LineFeature& a, const LineFeature& b) {
   const Eigen::Vector2d* points[4] = {&a.start, &a.end, &b.start, &b.end};
   const Eigen::Vector2d* raws[4] = {&a.raw_start, &a.raw_end, &b.raw_start, &b.raw_end};
-  const double weights[4] = {a.length(), a.length(), b.length(), b.length()};
-  double total = 0.0;
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (int k = 0; k < 4; ++k) {
-    centroid += weights[k] * *points[k];
-    total += weights[k];
-  }
-  centroid /= total;
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector2d r = *points[k] - centroid;
-    scatter += weights[k] * r * r.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(scatter);
-  Eigen::Vector2d direction = solver.eigenvectors().col(1);  // largest eigenvalue
+  const double length_a = a.length(), length_b = b.length();
+  Eigen::Vector2d centroid, direction;
+  fitWeightedLine({{a.start, length_a}, {a.end, length_a}, {b.start, length_b}, {b.end, length_b}},
+                  centroid, direction);
   if (direction.dot(a.end - a.start) < 0.0) direction = -direction;
 
   int first = 0, last = 0;
