@@ -303,6 +303,22 @@ TEST_F(ConfigFileTest, DenseSection) {
                     {"dense.voxel", "not a known key"});
 }
 
+TEST_F(ConfigFileTest, LinesSurfaceBand) {
+  const std::string base = kValidYaml;
+  EXPECT_EQ(
+      loadConfig(write("band.yaml", base + "lines:\n  surface_band_px: 8\n")).lines.surface_band_px,
+      8);
+  EXPECT_EQ(
+      loadConfig(write("off.yaml", base + "lines:\n  surface_band_px: 0\n")).lines.surface_band_px,
+      0);
+  EXPECT_EQ(loadConfig(write("none.yaml", base)).lines.surface_band_px,
+            LineParams().surface_band_px);
+  expectConfigError(write("one.yaml", base + "lines:\n  surface_band_px: 1\n"),
+                    {"lines.surface_band_px", "0 (off) or within [2, 20]"});
+  expectConfigError(write("wide.yaml", base + "lines:\n  surface_band_px: 21\n"),
+                    {"lines.surface_band_px"});
+}
+
 }  // namespace
 }  // namespace ply_slam
 

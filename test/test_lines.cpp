@@ -21,6 +21,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/line_matcher.h"
 #include "ply_slam/features/line_merger.h"
+#include "ply_slam/features/registered_depth.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "shared_data.h"
@@ -542,14 +543,14 @@ TEST(LineFitter, EndpointMethodOnCleanDepth) {
   EXPECT_LT((l.end - plane.point(camera, edge.end)).norm(), 0.01);
 }
 
-TEST(LineFitter, DistortionRoundTripsWithOpenCvUndistortion) {
+TEST(RegisteredDepth, DistortionRoundTripsWithOpenCvUndistortion) {
   PinholeCamera camera = syntheticCamera();
   camera.distortion = (cv::Mat_<double>(1, 5) << 0.2624, -0.9531, -0.0054, 0.0026, 1.1633);
-  const LineFitter fitter(LineParams{}, camera);
+  const RegisteredDepth depth(camera);
   std::vector<cv::Point2f> raw = {{20, 30}, {320, 240}, {600, 450}, {100, 400}}, undistorted;
   cv::undistortPoints(raw, undistorted, camera.K(), camera.distortion, cv::noArray(), camera.K());
   for (size_t i = 0; i < raw.size(); ++i) {
-    const Eigen::Vector2d back = fitter.distort({undistorted[i].x, undistorted[i].y});
+    const Eigen::Vector2d back = depth.distort({undistorted[i].x, undistorted[i].y});
     EXPECT_NEAR(back.x(), raw[i].x, 0.05);
     EXPECT_NEAR(back.y(), raw[i].y, 0.05);
   }

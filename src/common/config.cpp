@@ -148,6 +148,9 @@ void readLines(Section s, LineParams& l) {
   s.readPositive("ransac_iterations", l.ransac_iterations);
   s.read("refit_rounds", l.refit_rounds);
   if (l.refit_rounds < 0) s.fail("refit_rounds", "must be >= 0");
+  s.read("surface_band_px", l.surface_band_px);
+  if (l.surface_band_px != 0 && (l.surface_band_px < 2 || l.surface_band_px > 20))
+    s.fail("surface_band_px", "must be 0 (off) or within [2, 20]");
   s.readPositive("min_inlier_ratio", l.min_inlier_ratio);
   if (l.min_inlier_ratio > 1.0) s.fail("min_inlier_ratio", "must be <= 1");
   s.readPositive("min_length_m", l.min_length_m);

@@ -9,57 +9,29 @@
 namespace ply_slam {
 
 LineFitter::LineFitter(const LineParams& params, const PinholeCamera& camera)
-    : params_(params), camera_(camera) {
-  if (camera_.hasDistortion()) {
-    cv::Mat k;
-    camera_.distortion.convertTo(k, CV_64F);
-    for (int i = 0; i < std::min<int>(5, static_cast<int>(k.total())); ++i) k_[i] = k.at<double>(i);
-    distorted_ = true;
-  }
-}
-
-Eigen::Vector2d LineFitter::distort(const Eigen::Vector2d& undistorted) const {
-  if (!distorted_) return undistorted;
-  const double x = (undistorted.x() - camera_.cx) / camera_.fx;
-  const double y = (undistorted.y() - camera_.cy) / camera_.fy;
-  const double r2 = x * x + y * y;
-  const double radial = 1.0 + r2 * (k_[0] + r2 * (k_[1] + r2 * k_[4]));
-  const double xd = x * radial + 2.0 * k_[2] * x * y + k_[3] * (r2 + 2.0 * x * x);
-  const double yd = y * radial + k_[2] * (r2 + 2.0 * y * y) + 2.0 * k_[3] * x * y;
-  return {camera_.fx * xd + camera_.cx, camera_.fy * yd + camera_.cy};
-}
-
-double LineFitter::depthAt(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted) const {
-  CV_DbgAssert(depth_m.type() == CV_32F);
-  // The depth image is registered to the raw rgb image: read it where the pixel was imaged.
-  const Eigen::Vector2d raw = distort(undistorted);
-  const int u = static_cast<int>(std::lround(raw.x())), v = static_cast<int>(std::lround(raw.y()));
-  if (u < 0 || v < 0 || u >= depth_m.cols || v >= depth_m.rows) return 0.0;
-  const float d = depth_m.at<float>(v, u);
-  return std::isfinite(d) && camera_.validDepth(d) ? d : 0.0;
-}
+    : params_(params), camera_(camera), depth_(camera), refiner_(params, camera) {}
 
 constexpr double kSidePx = 2.0;  // where the two sides of a line are read
 
-double LineFitter::depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted,
-                             const Eigen::Vector2d& across) const {
+double LineFitter::depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
+                             const Eigen::Vector2d& raw_across) const {
   // Kinect-type sensors leave a band of invalid depth along occluding edges, which are
   // exactly where image lines are: step off the line, nearer offsets first. The sample stays
   // on the line; only its depth comes from beside it.
   // At an occluding edge the line belongs to the nearer surface, while the pixel on the line
   // may show either: where the two sides' depths differ by more than noise, take the nearer.
-  const double side_a = depthAt(depth_m, undistorted + kSidePx * across),
-               side_b = depthAt(depth_m, undistorted - kSidePx * across);
+  const double side_a = depth_.atRaw(depth_m, raw + kSidePx * raw_across),
+               side_b = depth_.atRaw(depth_m, raw - kSidePx * raw_across);
   if (side_a > 0.0 && side_b > 0.0) {
     const double nearer = std::min(side_a, side_b);
     const double gap =
         std::max(3.0 * std::sqrt(camera_.depth_noise.variance(nearer)), 0.02 * nearer);
     if (std::abs(side_a - side_b) > gap) return nearer;
   }
-  double z = depthAt(depth_m, undistorted);
+  double z = depth_.atRaw(depth_m, raw);
   for (int k = 1; z <= 0.0 && k <= params_.depth_search_px; ++k) {
-    z = depthAt(depth_m, undistorted + k * across);
-    if (z <= 0.0) z = depthAt(depth_m, undistorted - k * across);
+    z = depth_.atRaw(depth_m, raw + k * raw_across);
+    if (z <= 0.0) z = depth_.atRaw(depth_m, raw - k * raw_across);
   }
   return z;
 }
@@ -205,15 +177,19 @@ Line3D LineFitter::fitSampled(const LineFeature& line, const cv::Mat& depth_m,
   points.reserve(N + 1);
   covariances.reserve(N + 1);
   const Eigen::Vector2d d = line.direction(), across(-d.y(), d.x());
+  const Eigen::Vector2d raw_across = depth_.rawStep(0.5 * (line.start + line.end), across);
   for (int j = 0; j <= N; ++j) {
     const double s = static_cast<double>(j) / N;
     const Eigen::Vector2d p = line.start * (1.0 - s) + line.end * s;
-    const double z = depthNear(depth_m, p, across);
+    const double z = depthNear(depth_m, depth_.distort(p), raw_across);
     if (z <= 0.0) continue;
     points.push_back(camera_.backProject(p, z));
     covariances.push_back(sampleCovariance(p, z));
   }
-  return fitPoints(points, covariances, N + 1);
+  const Line3D fit = fitPoints(points, covariances, N + 1);
+  // The refined depths replace the fit's only where they still pass the same acceptance.
+  Line3D refined = fit;
+  return refiner_.refine(line, depth_m, refined) && accept(refined) ? refined : fit;
 }
 
 Line3D LineFitter::fitEndpoints(const LineFeature& line, const cv::Mat& depth_m) const {
@@ -222,8 +198,9 @@ Line3D LineFitter::fitEndpoints(const LineFeature& line, const cv::Mat& depth_m)
   out.samples = 2;
   // The same depth lookup as the samples of fitSampled, for a like-for-like comparison.
   const Eigen::Vector2d d = line.direction(), across(-d.y(), d.x());
-  const double zs = depthNear(depth_m, line.start, across);
-  const double ze = depthNear(depth_m, line.end, across);
+  const double zs =
+      depthNear(depth_m, depth_.distort(line.start), depth_.rawStep(line.start, across));
+  const double ze = depthNear(depth_m, depth_.distort(line.end), depth_.rawStep(line.end, across));
   out.valid_depth = (zs > 0.0) + (ze > 0.0);
   if (out.valid_depth < 2) return out;
   out.start = camera_.backProject(line.start, zs);

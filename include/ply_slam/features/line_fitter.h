@@ -7,7 +7,9 @@
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_3d.h"
+#include "ply_slam/features/line_depth_refiner.h"
 #include "ply_slam/features/line_feature.h"
+#include "ply_slam/features/registered_depth.h"
 
 namespace ply_slam {
 
@@ -21,8 +23,9 @@ namespace ply_slam {
 // inlier set; endpoints at the extreme inlier projections; accepted when
 // inliers / (N + 1) > Th1 (min_inlier_ratio) and the 3D length > Th2 (min_length_m).
 // Two additions, both parameters: where a sample's depth is invalid, the nearest valid depth
-// up to depth_search_px across the line; and refit_rounds re-selections of the inliers
-// against the PCA line (0 = the paper's fit exactly).
+// up to depth_search_px across the line; refit_rounds re-selections of the inliers against
+// the PCA line; and the accepted line's depth re-read from the surfaces beside it
+// (LineDepthRefiner, surface_band_px). refit_rounds = surface_band_px = 0: the paper's fit.
 // fitEndpoints is the "traditional" method: the two endpoints back-projected with their own
 // depth (found the same way), the same acceptance with the two endpoints as its samples.
 // Not thread-bound: const, no state per call.
@@ -46,22 +49,19 @@ class LineFitter {
   // L_avg = ceil(mean 2D length) of a frame's segments.
   static int averageLength(const std::vector<LineFeature>& lines);
 
-  // Raw image pixel of an undistorted pixel (the camera's k1 k2 p1 p2 k3).
-  Eigen::Vector2d distort(const Eigen::Vector2d& undistorted) const;
-  // Depth (m) at an undistorted pixel, read at its raw pixel; 0 when invalid.
-  double depthAt(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted) const;
-  // The same, but where it is invalid the depth of the nearest valid pixel up to
-  // depth_search_px away along `across` (unit, undistorted px), either side.
-  double depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted,
-                   const Eigen::Vector2d& across) const;
+  // Depth (m) at raw pixel `raw` (RegisteredDepth::atRaw), but where it is invalid the depth
+  // of the nearest valid pixel up to depth_search_px away along `raw_across` (one px across
+  // the line, in raw pixels), either side; at an occluding edge the nearer side's.
+  double depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
+                   const Eigen::Vector2d& raw_across) const;
 
  private:
   bool accept(Line3D& line) const;
 
   LineParams params_;
   PinholeCamera camera_;
-  double k_[5] = {0, 0, 0, 0, 0};  // k1 k2 p1 p2 k3
-  bool distorted_ = false;
+  RegisteredDepth depth_;
+  LineDepthRefiner refiner_;
 };
 
 }  // namespace ply_slam
