@@ -72,7 +72,8 @@ LineDepthRefiner::SideFit LineDepthRefiner::fitSide(const Band& band, const cv::
   samples.reserve(static_cast<size_t>(positions) * params_.surface_band_px);
   PlaneSums sums;
   int columns = 0;
-  for (int t = kFirstOffsetPx; t <= params_.surface_band_px; ++t) {
+  // Reads column t; adds it when `checked` is false or it continues the plane so far.
+  auto addColumn = [&](int t, bool checked) {
     const size_t first = samples.size();
     const Eigen::Vector2d step = side * t * band.raw_across;
     double weight = 0.0;
@@ -85,25 +86,31 @@ LineDepthRefiner::SideFit LineDepthRefiner::fitSide(const Band& band, const cv::
       samples.push_back(
           {band.s[i] + delta.dot(band.d), t + side * delta.dot(band.across), 1.0 / z, weight});
     }
-    const size_t read = samples.size() - first;
-    if (read < kMinValidShare * positions) break;
     PlaneSums column;
     for (size_t k = first; k < samples.size(); ++k) column.add(samples[k]);
-    if (columns >= kMinColumns) {
+    bool continues = samples.size() - first >= kMinValidShare * positions;
+    if (continues && checked) {
       // The column's weighted mean residual and mean row follow from its sums.
       const Eigen::LDLT<Eigen::Matrix3d> solver(sums.information());
       const Eigen::Vector3d theta = solver.solve(sums.rhs());
       const Eigen::Vector3d mean_row = column.rowSum() / column.w;
       const double mean_residual = column.wy / column.w - theta.dot(mean_row);
       const double variance = 1.0 / column.w + mean_row.dot(solver.solve(mean_row));
-      if (std::abs(mean_residual) > 3.0 * std::sqrt(variance)) {
-        samples.resize(first);
-        break;
-      }
+      continues = std::abs(mean_residual) <= 3.0 * std::sqrt(variance);
+    }
+    if (!continues) {
+      samples.resize(first);
+      return false;
     }
     sums += column;
     ++columns;
-  }
+    return true;
+  };
+  for (int t = kFirstOffsetPx; t <= params_.surface_band_px; ++t)
+    if (!addColumn(t, columns >= kMinColumns)) break;
+  // The column next to the segment: a hole or both surfaces at an occluding edge, but the
+  // nearest depths of a crease or a painted edge, where it continues the plane.
+  if (columns >= kMinColumns) addColumn(1, true);
   if (columns < kMinColumns) return fit;
 
   // Twice more without the samples off the plane by more than 3 sigma of the sensor: flying

@@ -46,7 +46,7 @@ struct LineParams {
   double chi2_inlier = 5.991;        // Mahalanobis^2 of a sample to the RANSAC line: inlier below
   int ransac_iterations = 40;        // two-point hypotheses per segment
   int refit_rounds = 2;              // inliers re-selected with the PCA line (0 = the paper's fit)
-  int surface_band_px = 6;           // px; depth re-read from the surfaces beside a line (0 = off)
+  int surface_band_px = 5;           // px; depth re-read from the surfaces beside a line (0 = off)
   double min_inlier_ratio = 0.25;    // Th1: inliers / samples along the segment
   double min_length_m = 0.03;        // Th2: shortest accepted 3D segment (m)
   int max_descriptor_distance = 80;  // LBD Hamming distance (of 256 bits): match below

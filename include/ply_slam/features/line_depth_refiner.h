@@ -22,8 +22,9 @@ namespace ply_slam {
 // across it, weights 1/var(1/Z) from the sensor's sigma_Z), on a band of columns t = 2, 3, ...
 // px off the segment, one position per pixel along the fitted extent (at most 48). The band
 // grows a column at a time up to surface_band_px while the new column continues the plane
-// (mean residual within 3 sigma), so a narrow face is not fitted across its far edge; then
-// samples off the plane by more than 3 sigma are dropped, twice. Each depth is placed at the
+// (mean residual within 3 sigma), so a narrow face is not fitted across its far edge; the
+// column at t = 1 joins on the same test (at an occluding edge it is a hole or mixes both
+// surfaces). Then samples off the plane by more than 3 sigma are dropped, twice. Each depth is placed at the
 // pixel centre it was read from: at a surface seen at a grazing angle half a pixel is a
 // centimetre. A side needs 3 columns of which half the pixels have depth.
 //
