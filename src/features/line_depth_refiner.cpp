@@ -75,11 +75,11 @@ LineDepthRefiner::SideFit LineDepthRefiner::fitSide(const Band& band, const cv::
   // Reads column t; adds it when `checked` is false or it continues the plane so far.
   auto addColumn = [&](int t, bool checked) {
     const size_t first = samples.size();
-    const Eigen::Vector2d step = side * t * band.raw_across;
+    const double offset = side * t;
     double weight = 0.0;
     for (int i = 0; i < positions; ++i) {
       Eigen::Vector2d delta;
-      const double z = depth_.atRaw(depth_m, band.raw[i] + step, &delta);
+      const double z = depth_.atRaw(depth_m, band.raw[i] + offset * band.raw_across[i], &delta);
       if (z <= 0.0) continue;
       // var(1/Z) = var(Z) / Z^4 to first order; one weight per column (its depth varies little).
       if (weight == 0.0) weight = z * z * z * z / camera_.depth_noise.variance(z);
@@ -158,15 +158,22 @@ bool LineDepthRefiner::refine(const LineFeature& segment, const cv::Mat& depth_m
   const int positions =
       std::clamp(static_cast<int>(std::ceil(std::abs(s1 - s0))) + 1, 2, kMaxPositions);
   band.raw.resize(positions);
+  band.raw_across.resize(positions);
   band.s.resize(positions);
+  // One px across in raw pixels at either end, in between interpolated (distortion changes
+  // it smoothly).
+  Eigen::Vector2d raw_across[2];
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector2d p = segment.start + (k == 0 ? s0 : s1) * d;
+    raw_across[k] = depth_.distort(p + band.across) - depth_.distort(p);
+  }
   for (int i = 0; i < positions; ++i) {
-    const double s = s0 + (s1 - s0) * i / (positions - 1);
+    const double f = static_cast<double>(i) / (positions - 1);
+    const double s = s0 + (s1 - s0) * f;
     band.s[i] = s - s_mid;
     band.raw[i] = depth_.distort(segment.start + s * d);
+    band.raw_across[i] = raw_across[0] * (1.0 - f) + raw_across[1] * f;
   }
-  // Distortion turns and stretches little over a band's width: one raw step across per line.
-  const Eigen::Vector2d mid = segment.start + s_mid * d;
-  band.raw_across = depth_.rawStep(mid, band.across);
 
   // A side's depth at s on the segment and its variance, to first order from var(1/Z).
   auto depthAt = [&](const SideFit& f, double s, double& variance) {

@@ -177,11 +177,16 @@ Line3D LineFitter::fitSampled(const LineFeature& line, const cv::Mat& depth_m,
   points.reserve(N + 1);
   covariances.reserve(N + 1);
   const Eigen::Vector2d d = line.direction(), across(-d.y(), d.x());
-  const Eigen::Vector2d raw_across = depth_.rawStep(0.5 * (line.start + line.end), across);
+  // One px across in raw pixels at either end, in between interpolated (distortion changes
+  // it smoothly; distorting every side read cost more than the reads).
+  const Eigen::Vector2d raw_start = depth_.distort(line.start), raw_end = depth_.distort(line.end);
+  const Eigen::Vector2d across_start = depth_.distort(line.start + across) - raw_start,
+                        across_end = depth_.distort(line.end + across) - raw_end;
   for (int j = 0; j <= N; ++j) {
     const double s = static_cast<double>(j) / N;
     const Eigen::Vector2d p = line.start * (1.0 - s) + line.end * s;
-    const double z = depthNear(depth_m, depth_.distort(p), raw_across);
+    const Eigen::Vector2d raw = j == 0 ? raw_start : j == N ? raw_end : depth_.distort(p);
+    const double z = depthNear(depth_m, raw, across_start * (1.0 - s) + across_end * s);
     if (z <= 0.0) continue;
     points.push_back(camera_.backProject(p, z));
     covariances.push_back(sampleCovariance(p, z));
@@ -198,9 +203,11 @@ Line3D LineFitter::fitEndpoints(const LineFeature& line, const cv::Mat& depth_m)
   out.samples = 2;
   // The same depth lookup as the samples of fitSampled, for a like-for-like comparison.
   const Eigen::Vector2d d = line.direction(), across(-d.y(), d.x());
-  const double zs =
-      depthNear(depth_m, depth_.distort(line.start), depth_.rawStep(line.start, across));
-  const double ze = depthNear(depth_m, depth_.distort(line.end), depth_.rawStep(line.end, across));
+  auto depthAtEnd = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d raw = depth_.distort(p);
+    return depthNear(depth_m, raw, depth_.distort(p + across) - raw);
+  };
+  const double zs = depthAtEnd(line.start), ze = depthAtEnd(line.end);
   out.valid_depth = (zs > 0.0) + (ze > 0.0);
   if (out.valid_depth < 2) return out;
   out.start = camera_.backProject(line.start, zs);

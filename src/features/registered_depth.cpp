@@ -5,7 +5,8 @@
 
 namespace ply_slam {
 
-RegisteredDepth::RegisteredDepth(const PinholeCamera& camera) : camera_(camera) {
+RegisteredDepth::RegisteredDepth(const PinholeCamera& camera)
+    : camera_(camera), inv_fx_(1.0 / camera.fx), inv_fy_(1.0 / camera.fy) {
   if (camera_.hasDistortion()) {
     cv::Mat k;
     camera_.distortion.convertTo(k, CV_64F);
@@ -16,19 +17,13 @@ RegisteredDepth::RegisteredDepth(const PinholeCamera& camera) : camera_(camera) 
 
 Eigen::Vector2d RegisteredDepth::distort(const Eigen::Vector2d& undistorted) const {
   if (!distorted_) return undistorted;
-  const double x = (undistorted.x() - camera_.cx) / camera_.fx;
-  const double y = (undistorted.y() - camera_.cy) / camera_.fy;
+  const double x = (undistorted.x() - camera_.cx) * inv_fx_;
+  const double y = (undistorted.y() - camera_.cy) * inv_fy_;
   const double r2 = x * x + y * y;
   const double radial = 1.0 + r2 * (k_[0] + r2 * (k_[1] + r2 * k_[4]));
   const double xd = x * radial + 2.0 * k_[2] * x * y + k_[3] * (r2 + 2.0 * x * x);
   const double yd = y * radial + k_[2] * (r2 + 2.0 * y * y) + 2.0 * k_[3] * x * y;
   return {camera_.fx * xd + camera_.cx, camera_.fy * yd + camera_.cy};
-}
-
-Eigen::Vector2d RegisteredDepth::rawStep(const Eigen::Vector2d& undistorted,
-                                         const Eigen::Vector2d& direction) const {
-  if (!distorted_) return direction;
-  return distort(undistorted + direction) - distort(undistorted);
 }
 
 }  // namespace ply_slam

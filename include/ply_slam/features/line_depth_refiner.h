@@ -24,9 +24,9 @@ namespace ply_slam {
 // grows a column at a time up to surface_band_px while the new column continues the plane
 // (mean residual within 3 sigma), so a narrow face is not fitted across its far edge; the
 // column at t = 1 joins on the same test (at an occluding edge it is a hole or mixes both
-// surfaces). Then samples off the plane by more than 3 sigma are dropped, twice. Each depth is placed at the
-// pixel centre it was read from: at a surface seen at a grazing angle half a pixel is a
-// centimetre. A side needs 3 columns of which half the pixels have depth.
+// surfaces). Then samples off the plane by more than 3 sigma are dropped, twice. Each depth is
+// placed at the pixel centre it was read from: at a surface seen at a grazing angle half a pixel is
+// a centimetre. A side needs 3 columns of which half the pixels have depth.
 //
 // Who owns the line: both sides meeting at the segment (a crease, a painted edge): both,
 // combined by their information; a step between them (an occluding edge): the nearer side;
@@ -50,10 +50,10 @@ class LineDepthRefiner {
   };
   // Positions along the fitted extent where the band's columns are read.
   struct Band {
-    Eigen::Vector2d d, across;         // the segment's direction and normal (undistorted)
-    Eigen::Vector2d raw_across;        // one px across, in raw pixels
-    std::vector<double> s;             // along, from the extent's middle (undistorted px)
-    std::vector<Eigen::Vector2d> raw;  // the raw pixel of each position on the segment
+    Eigen::Vector2d d, across;                // the segment's direction and normal (undistorted)
+    std::vector<double> s;                    // along, from the extent's middle (undistorted px)
+    std::vector<Eigen::Vector2d> raw;         // the raw pixel of each position on the segment
+    std::vector<Eigen::Vector2d> raw_across;  // and the raw step of one px across there
   };
   SideFit fitSide(const Band& band, const cv::Mat& depth_m, double side) const;
 

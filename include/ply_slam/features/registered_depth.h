@@ -7,19 +7,16 @@
 
 namespace ply_slam {
 
-// Depth at undistorted pixels, read from a depth image (CV_32F metres, 0 = invalid) that is
-// registered to the raw rgb image: each read goes to the raw pixel the point was imaged at.
+// Reads of a depth image (CV_32F metres, 0 = invalid) registered to the raw rgb image, for
+// points given in undistorted pixels: each read goes to the raw pixel the point was imaged at.
 class RegisteredDepth {
  public:
   explicit RegisteredDepth(const PinholeCamera& camera);
 
-  // Raw image pixel of an undistorted pixel (the camera's k1 k2 p1 p2 k3).
+  // Raw image pixel of an undistorted pixel (the camera's k1 k2 p1 p2 k3). Reads a few pixels
+  // apart can step from one such pixel by distort(p + step) - distort(p): distortion turns and
+  // stretches little over a few pixels.
   Eigen::Vector2d distort(const Eigen::Vector2d& undistorted) const;
-  // The raw displacement of a one-pixel step along unit `direction` at an undistorted pixel:
-  // distortion turns and stretches little over a few pixels, so nearby reads can step in raw
-  // pixels instead of distorting each position.
-  Eigen::Vector2d rawStep(const Eigen::Vector2d& undistorted,
-                          const Eigen::Vector2d& direction) const;
   // Depth (m) at the raw pixel nearest to `raw`; 0 when outside the image or invalid.
   // `rounding`, when given: the offset from `raw` to the centre of the pixel read.
   double atRaw(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
@@ -33,13 +30,10 @@ class RegisteredDepth {
     if (rounding) *rounding = Eigen::Vector2d(u - raw.x(), v - raw.y());
     return z;
   }
-  // The same at an undistorted pixel.
-  double at(const cv::Mat& depth_m, const Eigen::Vector2d& undistorted) const {
-    return atRaw(depth_m, distort(undistorted));
-  }
 
  private:
   PinholeCamera camera_;
+  double inv_fx_, inv_fy_;
   double k_[5] = {0, 0, 0, 0, 0};  // k1 k2 p1 p2 k3
   bool distorted_ = false;
 };
