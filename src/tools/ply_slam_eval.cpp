@@ -2,7 +2,6 @@
 // TUM benchmark's definitions (see ply_slam/eval/trajectory_metrics.h).
 //
 // Exit codes: 0 success, 1 unreadable/malformed input or too little overlap, 2 usage error.
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_trajectory_file.h"
@@ -53,25 +53,18 @@ struct Options {
 };
 
 double parseNumber(const std::string& option, const std::string& text, bool allow_zero) {
-  errno = 0;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value) || value < 0.0 ||
-      (!allow_zero && value == 0.0)) {
+  const std::optional<double> value = ply_slam::parseRealNumber(text);
+  if (!value || *value < 0.0 || (!allow_zero && *value == 0.0)) {
     throw UsageError{option + " needs a " + (allow_zero ? "non-negative" : "positive") +
                      " number, got '" + text + "'"};
   }
-  return value;
+  return *value;
 }
 
 int parseFrameCount(const std::string& option, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno == ERANGE || value < 1 || value > 1000000) {
-    throw UsageError{option + " needs a whole number of frames >= 1, got '" + text + "'"};
-  }
-  return static_cast<int>(value);
+  const std::optional<long> value = ply_slam::parseWholeNumber(text, 1, 1000000);
+  if (!value) throw UsageError{option + " needs a whole number of frames >= 1, got '" + text + "'"};
+  return static_cast<int>(*value);
 }
 
 Options parseArguments(const std::vector<std::string>& args) {

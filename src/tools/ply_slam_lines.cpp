@@ -25,6 +25,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/pose_interpolation.h"
@@ -53,10 +54,9 @@ struct Options {
 }
 
 long parsePositive(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || value < 1) usage(option + " needs a whole number >= 1");
-  return value;
+  const std::optional<long> value = parseWholeNumber(text, 1, 1000000000L);
+  if (!value) usage(option + " needs a whole number >= 1, got '" + text + "'");
+  return *value;
 }
 
 Options parse(int argc, char** argv) {

@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/dense/key_frame_cloud_builder.h"
 #include "ply_slam/dense/semantic_octree.h"
 #include "ply_slam/dense/voxel_agreement.h"
@@ -63,17 +64,13 @@ Options parse(int argc, char** argv) {
       o.keyframes = value;
     else if (arg == "--out")
       o.out = value;
-    else if (arg == "--clock-offset")
-      try {
-        o.fit_clock_offset = value == "auto";
-        size_t used = 0;
-        if (!o.fit_clock_offset) o.clock_offset = std::stod(value, &used);
-        if (!o.fit_clock_offset && (used != value.size() || !std::isfinite(o.clock_offset)))
-          throw std::invalid_argument(value);
-      } catch (const std::exception&) {
+    else if (arg == "--clock-offset") {
+      o.fit_clock_offset = value == "auto";
+      const std::optional<double> seconds = parseRealNumber(value);
+      if (!o.fit_clock_offset && !seconds)
         usage("--clock-offset needs auto or seconds, not " + value);
-      }
-    else
+      if (seconds) o.clock_offset = *seconds;
+    } else
       usage("unknown option " + arg);
   }
   if (o.sequence.empty() || o.config.empty() || o.keyframes.empty())

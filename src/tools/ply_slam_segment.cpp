@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/io/tum_sequence.h"
@@ -49,11 +50,9 @@ int main(int argc, char** argv) {
           params.input_width <= 0 || params.input_height <= 0)
         usage("--input needs WxH, e.g. 640x480");
     } else if (arg == "--every") {
-      char* end = nullptr;
-      const long n = std::strtol(value.c_str(), &end, 10);
-      if (value.empty() || *end != '\0' || n < 1 || n > 100000)
-        usage("--every needs a whole number >= 1, got '" + value + "'");
-      every = static_cast<int>(n);
+      const std::optional<long> n = parseWholeNumber(value, 1, 100000);
+      if (!n) usage("--every needs a whole number in [1, 100000], got '" + value + "'");
+      every = static_cast<int>(*n);
     } else if (arg == "--save") {
       save_dir = value;
     } else {

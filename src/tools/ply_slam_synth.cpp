@@ -4,7 +4,6 @@
 //   ply_slam_synth --benchmark [--scene ...] [--walkers N] [--frames N] [--noise]
 // The benchmark renders (and PNG-encodes in memory) without writing and prints frames/s.
 #include <algorithm>
-#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
@@ -15,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
@@ -43,13 +43,11 @@ const char* const kUsage =
 }
 
 long parseInteger(const std::string& option, const std::string& text, long min, long max) {
-  errno = 0;
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno == ERANGE || value < min || value > max)
+  const std::optional<long> value = parseWholeNumber(text, min, max);
+  if (!value)
     usage(option + " needs an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
           "], got '" + text + "'");
-  return value;
+  return *value;
 }
 
 Options parse(int argc, char** argv) {

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/dense/map_export.h"
@@ -74,10 +75,9 @@ struct Options {
 }
 
 long parseCount(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || value < 0) usage(option + " needs a whole number >= 0");
-  return value;
+  const std::optional<long> value = parseWholeNumber(text, 0, 1000000000L);
+  if (!value) usage(option + " needs a whole number >= 0, got '" + text + "'");
+  return *value;
 }
 
 Options parse(int argc, char** argv) {

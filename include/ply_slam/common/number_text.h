@@ -1,0 +1,15 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace ply_slam {
+
+// Numbers typed by a user (command-line options): the whole text must be the number, so
+// "12x", "1e3" for a count, " 5" or "" are refused rather than read as far as they go.
+// A whole number in [min, max], or nothing.
+std::optional<long> parseWholeNumber(const std::string& text, long min, long max);
+// A finite decimal number (strtod syntax), or nothing.
+std::optional<double> parseRealNumber(const std::string& text);
+
+}  // namespace ply_slam
