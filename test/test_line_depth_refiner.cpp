@@ -194,6 +194,11 @@ TEST(LineDepthRefiner, LeavesTheLineWithoutASurfaceBeside) {
   depth = render(
       c, [](const Eigen::Vector2d&) { return 2.0; }, 6);
   EXPECT_FALSE(LineDepthRefiner(off, c).refine(line, depth, fit));
+  // A fit with an end at or behind the camera has no extent in the image: left alone.
+  Line3D behind = before;
+  behind.end.z() = 0.0;
+  EXPECT_FALSE(refiner.refine(line, depth, behind));
+  EXPECT_EQ(behind.start, before.start);
   EXPECT_TRUE(refiner.refine(line, depth, fit));
 }
 

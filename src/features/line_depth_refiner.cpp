@@ -146,6 +146,7 @@ LineDepthRefiner::SideFit LineDepthRefiner::fitSide(const Band& band, const cv::
 bool LineDepthRefiner::refine(const LineFeature& segment, const cv::Mat& depth_m,
                               Line3D& line) const {
   if (params_.surface_band_px < kFirstOffsetPx || !line.valid) return false;
+  if (!(line.start.z() > 0.0 && line.end.z() > 0.0)) return false;  // not in front: no extent
   CV_Assert(depth_m.type() == CV_32F);
   Band band;
   band.d = segment.direction();
