@@ -649,6 +649,7 @@ TEST(LineConfig, ShippedFr1SectionAndStrictKeys) {
   EXPECT_EQ(config.lines.lbd_band_width, 5);
   EXPECT_TRUE(config.lines.refine_edges);
   EXPECT_EQ(config.lines.depth_search_px, 3);
+  EXPECT_EQ(config.lines.surface_band_px, 5);
   EXPECT_DOUBLE_EQ(config.lines.min_inlier_ratio, 0.25);
   EXPECT_DOUBLE_EQ(config.lines.chi2_inlier, 5.991);
   EXPECT_DOUBLE_EQ(config.lines.min_length_m, 0.03);
