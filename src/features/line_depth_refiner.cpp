@@ -163,11 +163,8 @@ bool LineDepthRefiner::refine(const LineFeature& segment, const cv::Mat& depth_m
   band.s.resize(positions);
   // One px across in raw pixels at either end, in between interpolated (distortion changes
   // it smoothly).
-  Eigen::Vector2d raw_across[2];
-  for (int k = 0; k < 2; ++k) {
-    const Eigen::Vector2d p = segment.start + (k == 0 ? s0 : s1) * d;
-    raw_across[k] = depth_.distort(p + band.across) - depth_.distort(p);
-  }
+  const Eigen::Vector2d raw_across[2] = {depth_.rawStep(segment.start + s0 * d, band.across),
+                                         depth_.rawStep(segment.start + s1 * d, band.across)};
   for (int i = 0; i < positions; ++i) {
     const double f = static_cast<double>(i) / (positions - 1);
     const double s = s0 + (s1 - s0) * f;
@@ -185,10 +182,9 @@ bool LineDepthRefiner::refine(const LineFeature& segment, const cv::Mat& depth_m
   };
   auto agreesWithFit = [&](const SideFit& f) {
     for (const auto& [s, z_fit] : {std::pair{s0, line.start.z()}, std::pair{s1, line.end.z()}}) {
-      const double gap =
-          std::max(3.0 * std::sqrt(camera_.depth_noise.variance(z_fit)), 0.02 * z_fit);
       double variance = 0.0;
-      if (std::abs(depthAt(f, s, variance) - z_fit) > gap) return false;
+      if (std::abs(depthAt(f, s, variance) - z_fit) > camera_.depth_noise.surfaceGap(z_fit))
+        return false;
     }
     return true;
   };

@@ -24,9 +24,7 @@ double LineFitter::depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
                side_b = depth_.atRaw(depth_m, raw - kSidePx * raw_across);
   if (side_a > 0.0 && side_b > 0.0) {
     const double nearer = std::min(side_a, side_b);
-    const double gap =
-        std::max(3.0 * std::sqrt(camera_.depth_noise.variance(nearer)), 0.02 * nearer);
-    if (std::abs(side_a - side_b) > gap) return nearer;
+    if (std::abs(side_a - side_b) > camera_.depth_noise.surfaceGap(nearer)) return nearer;
   }
   double z = depth_.atRaw(depth_m, raw);
   for (int k = 1; z <= 0.0 && k <= params_.depth_search_px; ++k) {
@@ -179,14 +177,13 @@ Line3D LineFitter::fitSampled(const LineFeature& line, const cv::Mat& depth_m,
   const Eigen::Vector2d d = line.direction(), across(-d.y(), d.x());
   // One px across in raw pixels at either end, in between interpolated (distortion changes
   // it smoothly; distorting every side read cost more than the reads).
-  const Eigen::Vector2d raw_start = depth_.distort(line.start), raw_end = depth_.distort(line.end);
-  const Eigen::Vector2d across_start = depth_.distort(line.start + across) - raw_start,
-                        across_end = depth_.distort(line.end + across) - raw_end;
+  const Eigen::Vector2d across_start = depth_.rawStep(line.start, across),
+                        across_end = depth_.rawStep(line.end, across);
   for (int j = 0; j <= N; ++j) {
     const double s = static_cast<double>(j) / N;
     const Eigen::Vector2d p = line.start * (1.0 - s) + line.end * s;
-    const Eigen::Vector2d raw = j == 0 ? raw_start : j == N ? raw_end : depth_.distort(p);
-    const double z = depthNear(depth_m, raw, across_start * (1.0 - s) + across_end * s);
+    const double z =
+        depthNear(depth_m, depth_.distort(p), across_start * (1.0 - s) + across_end * s);
     if (z <= 0.0) continue;
     points.push_back(camera_.backProject(p, z));
     covariances.push_back(sampleCovariance(p, z));
@@ -203,11 +200,9 @@ Line3D LineFitter::fitEndpoints(const LineFeature& line, const cv::Mat& depth_m)
   out.samples = 2;
   // The same depth lookup as the samples of fitSampled, for a like-for-like comparison.
   const Eigen::Vector2d d = line.direction(), across(-d.y(), d.x());
-  auto depthAtEnd = [&](const Eigen::Vector2d& p) {
-    const Eigen::Vector2d raw = depth_.distort(p);
-    return depthNear(depth_m, raw, depth_.distort(p + across) - raw);
-  };
-  const double zs = depthAtEnd(line.start), ze = depthAtEnd(line.end);
+  const double zs =
+      depthNear(depth_m, depth_.distort(line.start), depth_.rawStep(line.start, across));
+  const double ze = depthNear(depth_m, depth_.distort(line.end), depth_.rawStep(line.end, across));
   out.valid_depth = (zs > 0.0) + (ze > 0.0);
   if (out.valid_depth < 2) return out;
   out.start = camera_.backProject(line.start, zs);

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -13,6 +15,9 @@ struct DepthNoiseModel {
   double beta = 0.0;
   double gamma = 1.0e-5;
   double variance(double z) const { return alpha * z * z + beta * z + gamma; }
+  // Two depths near z further apart than this are two surfaces (a step at an occluding
+  // edge), not one surface's noise: 3 sigma, and at least 2 % of z for unmodelled errors.
+  double surfaceGap(double z) const { return std::max(3.0 * std::sqrt(variance(z)), 0.02 * z); }
 };
 
 // Pinhole RGB-D camera. Pixel coordinates used by the algorithms are undistorted;

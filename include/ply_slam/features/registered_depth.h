@@ -13,10 +13,13 @@ class RegisteredDepth {
  public:
   explicit RegisteredDepth(const PinholeCamera& camera);
 
-  // Raw image pixel of an undistorted pixel (the camera's k1 k2 p1 p2 k3). Reads a few pixels
-  // apart can step from one such pixel by distort(p + step) - distort(p): distortion turns and
-  // stretches little over a few pixels.
+  // Raw image pixel of an undistorted pixel (the camera's k1 k2 p1 p2 k3).
   Eigen::Vector2d distort(const Eigen::Vector2d& undistorted) const;
+  // The raw displacement of an undistorted `step` taken at `undistorted`: distortion turns and
+  // stretches little over a few pixels, so reads a few pixels apart step from one raw pixel.
+  Eigen::Vector2d rawStep(const Eigen::Vector2d& undistorted, const Eigen::Vector2d& step) const {
+    return distort(undistorted + step) - distort(undistorted);
+  }
   // Depth (m) at the raw pixel nearest to `raw`; 0 when outside the image or invalid.
   // `rounding`, when given: the offset from `raw` to the centre of the pixel read.
   double atRaw(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
