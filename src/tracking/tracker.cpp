@@ -469,16 +469,20 @@ void Tracker::createKeyFrame(Frame& frame) {
     // Line landmarks: the matched ones gain an observation, the accepted 3D fits of the rest
     // become new ones (world frame by the keyframe's pose).
     kf->map_lines.resize(frame.lines.size());
+    auto weight = [&](const Eigen::Vector3d& p) { return 1.0 / cam.depth_noise.variance(p.z()); };
     for (size_t i = 0; i < frame.lines.size(); ++i) {
       auto& l = frame.map_lines[i];
+      const Line3D& fit = frame.lines.lines3d[i];
       if (l && !frame.line_outlier[i]) {
         ++l->observations;
+        if (fit.valid)
+          l->fuse(T_wc * fit.start, T_wc * fit.end, weight(fit.start), weight(fit.end));
         kf->map_lines[i] = l;
         continue;
       }
-      if (!frame.lines.hasLine3D(i)) continue;
-      const Line3D& fit = frame.lines.lines3d[i];
+      if (!fit.valid) continue;
       l = map_.createMapLine(T_wc * fit.start, T_wc * fit.end, frame.lines.descriptor(i), kf->id);
+      l->fuse(l->start, l->end, weight(fit.start), weight(fit.end));
       l->observations = 1;
       kf->map_lines[i] = l;
       frame.line_outlier[i] = false;
