@@ -1,4 +1,5 @@
-// MapLine::fuse: keyframe fits of one line averaged into the landmark (issue #4).
+// MapLine::fuse: the fits of one line from the frames that see it averaged into the landmark
+// (issue #4); MapLine::distanceToLine, which the tracker uses to keep other lines' fits out.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,6 +53,14 @@ TEST(MapLine, AFitWithoutWeightLeavesTheLineAlone) {
   EXPECT_TRUE(l.start.isApprox(Eigen::Vector3d(0, 0, 2)));
   EXPECT_TRUE(l.end.isApprox(Eigen::Vector3d(1, 0, 2)));
   EXPECT_DOUBLE_EQ(l.start_weight + l.end_weight, 2.0);
+}
+
+TEST(MapLine, DistanceToLineIsTakenFromTheInfiniteLine) {
+  MapLine l;
+  l.fuse({0, 0, 2}, {1, 0, 2}, 1.0, 1.0);
+  EXPECT_NEAR(l.distanceToLine({0.5, 0.03, 2}), 0.03, 1e-12);
+  EXPECT_NEAR(l.distanceToLine({3.0, 0.0, 2.04}), 0.04, 1e-12);  // beyond the end: still the line
+  EXPECT_NEAR(l.distanceToLine({-1.0, 0.0, 2.0}), 0.0, 1e-12);
 }
 
 // Twenty fits of a 0.3 m segment 4 m away, ends off by 1.5 cm (the sensor's sigma there): one

@@ -4,6 +4,11 @@
 
 namespace ply_slam {
 
+double MapLine::distanceToLine(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d d = (end - start).normalized(), r = p - start;
+  return (r - d * d.dot(r)).norm();
+}
+
 void MapLine::fuse(const Eigen::Vector3d& fit_start, const Eigen::Vector3d& fit_end,
                    double weight_start, double weight_end) {
   Eigen::Vector3d s = fit_start, e = fit_end;

@@ -94,6 +94,7 @@ TrackingResult Tracker::track(Frame& frame) {
       if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
+      fuseLineFits(frame);
       result.inliers = inliers;
       result.line_inliers = frame.numLineMatches();
       if (needKeyFrame(frame, inliers)) {
@@ -411,6 +412,26 @@ void Tracker::updatePointStatistics(Frame& frame) {
     if (p->visible >= 10 && p->foundRatio() < 0.25) p->bad = true;
 }
 
+void Tracker::fuseLineFits(const Frame& frame) {
+  const DepthNoiseModel& noise = config_.camera.depth_noise;
+  const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
+  const double min_cos = std::cos(config_.lines.match_angle_deg * M_PI / 180.0);
+  for (size_t i = 0; i < frame.map_lines.size(); ++i) {
+    const Line3D& fit = frame.lines.lines3d[i];
+    if (!frame.map_lines[i] || !fit.valid) continue;
+    MapLine& l = *frame.map_lines[i];
+    const Eigen::Vector3d s = T_wc * fit.start, e = T_wc * fit.end;
+    // Only a fit of the same 3D line: a match to a parallel edge a few pixels away (the other
+    // side of a desk leg) passes the 2D tests but lies centimetres off, and a short fit across
+    // the line can have both ends near it.
+    if (l.distanceToLine(s) > noise.surfaceGap(fit.start.z()) ||
+        l.distanceToLine(e) > noise.surfaceGap(fit.end.z()) ||
+        std::abs((e - s).normalized().dot((l.end - l.start).normalized())) < min_cos)
+      continue;
+    l.fuse(s, e, 1.0 / noise.variance(fit.start.z()), 1.0 / noise.variance(fit.end.z()));
+  }
+}
+
 bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
   if (!last_keyframe_) return true;
   const auto& t = config_.tracking;
@@ -469,20 +490,18 @@ void Tracker::createKeyFrame(Frame& frame) {
     // Line landmarks: the matched ones gain an observation, the accepted 3D fits of the rest
     // become new ones (world frame by the keyframe's pose).
     kf->map_lines.resize(frame.lines.size());
-    auto weight = [&](const Eigen::Vector3d& p) { return 1.0 / cam.depth_noise.variance(p.z()); };
     for (size_t i = 0; i < frame.lines.size(); ++i) {
       auto& l = frame.map_lines[i];
       const Line3D& fit = frame.lines.lines3d[i];
       if (l && !frame.line_outlier[i]) {
         ++l->observations;
-        if (fit.valid)
-          l->fuse(T_wc * fit.start, T_wc * fit.end, weight(fit.start), weight(fit.end));
         kf->map_lines[i] = l;
         continue;
       }
       if (!fit.valid) continue;
       l = map_.createMapLine(T_wc * fit.start, T_wc * fit.end, frame.lines.descriptor(i), kf->id);
-      l->fuse(l->start, l->end, weight(fit.start), weight(fit.end));
+      l->fuse(l->start, l->end, 1.0 / cam.depth_noise.variance(fit.start.z()),
+              1.0 / cam.depth_noise.variance(fit.end.z()));
       l->observations = 1;
       kf->map_lines[i] = l;
       frame.line_outlier[i] = false;

@@ -6,9 +6,9 @@
 namespace ply_slam {
 
 // A static 3D line segment landmark (issue #4), created at a keyframe from an accepted 3D fit
-// (PAPER.md §3.1) moved into the world frame, matched by its LBD descriptor. Each later
-// keyframe that matches it with an accepted fit of its own is averaged in, as map points
-// average their depth measurements.
+// (PAPER.md §3.1) moved into the world frame, matched by its LBD descriptor. Every later
+// tracked frame that matches it with an accepted fit of its own on the same 3D line averages
+// that fit in (Tracker), as map points average their depth measurements.
 struct MapLine {
   long id = 0;
   Eigen::Vector3d start = Eigen::Vector3d::Zero();  // world frame, m; the end seen at the 2D start
@@ -22,6 +22,8 @@ struct MapLine {
   long local_map_frame = -1;  // frame id whose local map holds it (deduplication)
   bool bad = false;
 
+  // Distance (m) of p to the infinite line through start and end.
+  double distanceToLine(const Eigen::Vector3d& p) const;
   // Averages a fit of this line (world frame; either way round) into start and end, each
   // weighted by the inverse variance of its depth.
   void fuse(const Eigen::Vector3d& fit_start, const Eigen::Vector3d& fit_end, double weight_start,

@@ -52,6 +52,9 @@ class Tracker {
   bool needKeyFrame(const Frame& frame, int inliers) const;
   void createKeyFrame(Frame& frame);
   void updatePointStatistics(Frame& frame);
+  // Averages each accepted 3D fit of a tracked frame into the map line it matched as an
+  // inlier, where the fit lies on that line.
+  void fuseLineFits(const Frame& frame);
 
   const SystemConfig config_;
   Map& map_;
