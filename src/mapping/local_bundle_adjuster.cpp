@@ -6,7 +6,6 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "ply_slam/common/line_residual.h"
 #include "ply_slam/common/point_residual.h"
 #include "ply_slam/common/se3_params.h"
 
@@ -22,45 +21,6 @@ struct ObservationCost {
   }
   const PointResidual residual;
   const PinholeCamera& cam;
-};
-
-// The pose optimiser's line residual (PAPER.md §3) with the landmark free too: ends = start
-// (3) and end (3), world frame.
-struct LineObservationCost {
-  LineObservationCost(const LineResidual& r, const PinholeCamera& c) : residual(r), cam(c) {}
-  template <typename T>
-  bool operator()(const T* pose, const T* ends, T* out) const {
-    residual.evaluate(cam, pose, ends, ends + 3, out);
-    return true;
-  }
-  const LineResidual residual;
-  const PinholeCamera& cam;
-};
-
-// The map line's fused ends (MapLine::fuse) as a prior, each with the information averaged
-// into it: it holds the depth, and the ends along the line, which the 2D residuals leave free.
-struct LinePriorCost {
-  LinePriorCost(const MapLine& l)
-      : start(l.start),
-        end(l.end),
-        w_start(std::sqrt(l.start_weight)),
-        w_end(std::sqrt(l.end_weight)) {}
-  template <typename T>
-  bool operator()(const T* ends, T* out) const {
-    for (int k = 0; k < 3; ++k) {
-      out[k] = (ends[k] - T(start[k])) * T(w_start);
-      out[3 + k] = (ends[3 + k] - T(end[k])) * T(w_end);
-    }
-    return true;
-  }
-  const Eigen::Vector3d start, end;
-  const double w_start, w_end;
-};
-
-struct LineObservation {
-  KeyFrame* keyframe;
-  size_t index;
-  size_t line;  // in the adjusted lines
 };
 
 struct Observation {
@@ -117,34 +77,6 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
     }
   }
 
-  // Their line landmarks, seen by any keyframe in the problem.
-  std::vector<MapLine*> line_list;
-  std::unordered_map<MapLine*, size_t> line_index;
-  std::vector<std::array<double, 6>> lines;
-  for (KeyFrame* kf : keyframes) {
-    for (const auto& l : kf->map_lines) {
-      if (!l || l->bad || l->start_weight <= 0.0 || l->end_weight <= 0.0 ||
-          !line_index.emplace(l.get(), lines.size()).second)
-        continue;
-      line_list.push_back(l.get());
-      lines.push_back(
-          {l->start.x(), l->start.y(), l->start.z(), l->end.x(), l->end.y(), l->end.z()});
-    }
-  }
-  std::vector<LineObservation> line_observations;
-  std::vector<KeyFrame*> posed;  // in a fixed order
-  for (KeyFrame* kf : keyframes) posed.push_back(kf);
-  for (const auto& [kf, index] : pose_index)
-    if (!local.count(kf)) posed.push_back(kf);
-  std::sort(posed.begin() + keyframes.size(), posed.end(),
-            [](const KeyFrame* a, const KeyFrame* b) { return a->id < b->id; });
-  for (KeyFrame* kf : posed) {
-    for (size_t i = 0; i < kf->map_lines.size() && i < kf->lines.size(); ++i) {
-      const auto it = kf->map_lines[i] ? line_index.find(kf->map_lines[i].get()) : line_index.end();
-      if (it != line_index.end()) line_observations.push_back({kf, i, it->second});
-    }
-  }
-
   ceres::Problem::Options problem_options;
   ceres::Problem problem(problem_options);
   for (auto& o : observations) {
@@ -162,19 +94,6 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
                              poses[pose_index[o.keyframe]].data(),
                              points[point_index[o.point]].data());
   }
-  const double line_sigma = config_.lines.residual_sigma_px;
-  for (const LineObservation& o : line_observations) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<LineObservationCost, 2, 6, 6>(new LineObservationCost(
-            {o.keyframe->lines[o.index].line(), 1.0 / line_sigma}, config_.camera)),
-        new ceres::HuberLoss(std::sqrt(t.chi2_outlier)), poses[pose_index[o.keyframe]].data(),
-        lines[o.line].data());
-  }
-  for (size_t k = 0; k < line_list.size(); ++k)
-    if (problem.HasParameterBlock(lines[k].data()))
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<LinePriorCost, 6, 6>(new LinePriorCost(*line_list[k])),
-          nullptr, lines[k].data());
   // Fixed: keyframes outside the local window, and the first keyframe (gauge freedom).
   for (const auto& [kf, index] : pose_index) {
     if (local.count(kf) && kf->id != 0) {
@@ -211,12 +130,6 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
   }
   for (const auto& [kf, index] : pose_index)
     if (local.count(kf)) kf->T_cw = fromParams(poses[index].data());
-  for (size_t k = 0; k < line_list.size(); ++k) {
-    line_list[k]->start = Eigen::Vector3d(lines[k][0], lines[k][1], lines[k][2]);
-    line_list[k]->end = Eigen::Vector3d(lines[k][3], lines[k][4], lines[k][5]);
-  }
-  stats.lines = static_cast<int>(line_list.size());
-  stats.line_observations = static_cast<int>(line_observations.size());
   for (size_t k = 0; k < point_list.size(); ++k) {
     point_list[k]->position = Eigen::Vector3d(points[k][0], points[k][1], points[k][2]);
     if (point_list[k]->observers.empty()) point_list[k]->bad = true;

@@ -1,6 +1,5 @@
 #include "ply_slam/tracking/pose_optimizer.h"
 
-#include "ply_slam/common/line_residual.h"
 #include "ply_slam/common/point_residual.h"
 #include "ply_slam/common/se3_params.h"
 
@@ -44,19 +43,36 @@ struct FixedPointCost {
 // by sqrt(F) so that the squared norm is F e_l' B^-1 e_l.
 struct FixedLineCost {
   FixedLineCost(const LineObservation& o, const PinholeCamera& c, double weight)
-      : residual{o.line, std::sqrt(weight) / o.pixel_sigma}, start(o.start), end(o.end), cam(c) {}
+      : obs(o), cam(c), scale(std::sqrt(weight) / o.pixel_sigma) {}
 
   template <typename T>
-  bool operator()(const T* pose, T* out) const {
-    const T s[3] = {T(start.x()), T(start.y()), T(start.z())};
-    const T e[3] = {T(end.x()), T(end.y()), T(end.z())};
-    residual.evaluate(cam, pose, s, e, out);
+  bool endpoint(const T* pose, const Eigen::Vector3d& P, T* out) const {
+    const T w[3] = {T(P.x()), T(P.y()), T(P.z())};
+    T p[3];
+    ceres::AngleAxisRotatePoint(pose, w, p);
+    p[0] += pose[3];
+    p[1] += pose[4];
+    p[2] += pose[5];
+    if (p[2] < T(PointResidual::kMinDepth)) {
+      *out = T(PointResidual::kBehindCameraResidual);
+      return true;
+    }
+    const T u = T(cam.fx) * p[0] / p[2] + T(cam.cx);
+    const T v = T(cam.fy) * p[1] / p[2] + T(cam.cy);
+    *out = (T(obs.line.x()) * u + T(obs.line.y()) * v + T(obs.line.z())) * T(scale);
     return true;
   }
 
-  const LineResidual residual;
-  const Eigen::Vector3d start, end;
+  template <typename T>
+  bool operator()(const T* pose, T* out) const {
+    endpoint(pose, obs.start, out);
+    endpoint(pose, obs.end, out + 1);
+    return true;
+  }
+
+  const LineObservation obs;
   const PinholeCamera& cam;
+  const double scale;
 };
 
 bool usesDepth(const PointObservation& o) { return o.depth > 0.0 && o.depth_sigma > 0.0; }

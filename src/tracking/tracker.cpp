@@ -489,7 +489,6 @@ void Tracker::createKeyFrame(Frame& frame) {
   if (config_.lines.enabled) {
     // Line landmarks: the matched ones gain an observation, the accepted 3D fits of the rest
     // become new ones (world frame by the keyframe's pose).
-    kf->lines = frame.lines.lines;
     kf->map_lines.resize(frame.lines.size());
     for (size_t i = 0; i < frame.lines.size(); ++i) {
       auto& l = frame.map_lines[i];

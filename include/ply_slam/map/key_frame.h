@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "ply_slam/features/frame_features.h"
-#include "ply_slam/features/line_feature.h"
 #include "ply_slam/map/map_line.h"
 #include "ply_slam/map/map_point.h"
 
@@ -20,7 +19,6 @@ struct KeyFrame {
   Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
   FrameFeatures features;
   std::vector<std::shared_ptr<MapPoint>> map_points;  // per keypoint, may be null
-  std::vector<LineFeature> lines;                     // the frame's 2D segments (undistorted)
   std::vector<std::shared_ptr<MapLine>> map_lines;    // per line of the frame, may be null
   std::map<KeyFrame*, int> covisibility;              // keyframe -> shared map points
 
