@@ -54,11 +54,7 @@ Share measure(SceneKind scene, LineFitMethod method, int surface_band_px, bool n
       // Only lines on the scene's true segments can be judged (not texture edges).
       const auto candidates = imagedSegments(lines.lines[k], truth, camera, T_wc.inverse());
       if (candidates.empty()) continue;
-      LineError e{1e9, 0.0};
-      for (size_t s : candidates) {
-        const LineError c = lineError(T_wc * l.start, T_wc * l.end, truth[s]);
-        if (c.endpoint_m < e.endpoint_m) e = c;
-      }
+      const LineError e = lineError(T_wc * l.start, T_wc * l.end, truth, candidates);
       ++share.accepted;
       share.within += e.endpoint_m <= 0.02 && e.angle_deg <= 1.0;
     }

@@ -65,11 +65,7 @@ TEST_P(MapLineAccuracy, FusedMapLinesLieOnTheTrueSegments) {
     const auto candidates =
         imagedSegments(seen, truth, camera, sequence.pose(first->frame_id).inverse());
     if (candidates.empty()) continue;  // a texture edge
-    LineError e{1e9, 0.0};
-    for (size_t s : candidates) {
-      const LineError c = lineError(T_w_map * line->start, T_w_map * line->end, truth[s]);
-      if (c.endpoint_m < e.endpoint_m) e = c;
-    }
+    const LineError e = lineError(T_w_map * line->start, T_w_map * line->end, truth, candidates);
     ++judged;
     good += e.endpoint_m <= 0.02 && e.angle_deg <= 1.0;
     direction += e.angle_deg <= 1.0;

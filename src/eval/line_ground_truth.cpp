@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ply_slam {
 namespace {
@@ -22,6 +23,16 @@ LineError lineError(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
   const double cosine =
       std::min(1.0, std::abs((end - start).normalized().dot((truth.b - truth.a).normalized())));
   return {distance, std::acos(cosine) * 180.0 / M_PI};
+}
+
+LineError lineError(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                    const std::vector<Segment3>& truth, const std::vector<size_t>& candidates) {
+  LineError best{std::numeric_limits<double>::infinity(), 0.0};
+  for (size_t k : candidates) {
+    const LineError e = lineError(start, end, truth[k]);
+    if (e.endpoint_m < best.endpoint_m) best = e;
+  }
+  return best;
 }
 
 std::vector<size_t> imagedSegments(const LineFeature& line, const std::vector<Segment3>& truth,

@@ -428,8 +428,14 @@ void Tracker::fuseLineFits(const Frame& frame) {
         l.distanceToLine(e) > noise.surfaceGap(fit.end.z()) ||
         std::abs((e - s).normalized().dot((l.end - l.start).normalized())) < min_cos)
       continue;
-    l.fuse(s, e, 1.0 / noise.variance(fit.start.z()), 1.0 / noise.variance(fit.end.z()));
+    fuseFit(l, fit, T_wc);
   }
+}
+
+void Tracker::fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const {
+  const DepthNoiseModel& noise = config_.camera.depth_noise;
+  line.fuse(T_wc * fit.start, T_wc * fit.end, 1.0 / noise.variance(fit.start.z()),
+            1.0 / noise.variance(fit.end.z()));
 }
 
 bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
@@ -500,8 +506,7 @@ void Tracker::createKeyFrame(Frame& frame) {
       }
       if (!fit.valid) continue;
       l = map_.createMapLine(T_wc * fit.start, T_wc * fit.end, frame.lines.descriptor(i), kf->id);
-      l->fuse(l->start, l->end, 1.0 / cam.depth_noise.variance(fit.start.z()),
-              1.0 / cam.depth_noise.variance(fit.end.z()));
+      fuseFit(*l, fit, T_wc);  // its first fit: the weights
       l->observations = 1;
       kf->map_lines[i] = l;
       frame.line_outlier[i] = false;

@@ -17,6 +17,10 @@ struct LineError {
 
 LineError lineError(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
                     const Segment3& truth);
+// The error against the nearest of several candidate true segments (indices into truth, from
+// imagedSegments): the one with the smallest endpoint distance. Not empty.
+LineError lineError(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
+                    const std::vector<Segment3>& truth, const std::vector<size_t>& candidates);
 
 // The true segments a detected 2D segment may image: those whose projection (camera at T_cw)
 // has both detected ends within `max_px` of its line, a direction within `max_deg`, and

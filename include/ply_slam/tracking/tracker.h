@@ -55,6 +55,9 @@ class Tracker {
   // Averages each accepted 3D fit of a tracked frame into the map line it matched as an
   // inlier, where the fit lies on that line.
   void fuseLineFits(const Frame& frame);
+  // Averages fit (camera frame at T_wc) into line, each end weighted by the inverse variance of
+  // its depth.
+  void fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const;
 
   const SystemConfig config_;
   Map& map_;
