@@ -1,0 +1,61 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ply_slam/common/pinhole_camera.h"
+
+namespace ply_slam {
+
+// Every threshold of loop detection (PAPER.md §3.3). Values the paper states are marked
+// "paper"; the others are our choices (the paper gives none) and say why.
+struct LoopOptions {
+  // --- Instance similarity ---------------------------------------------------------------
+  // paper: S_inst = w_pos S_pos + w_iou S_IoU.
+  double position_weight = 0.6;
+  double iou_weight = 0.4;
+  // paper: eps in S_IoU = inter / (union + eps), keeps empty boxes finite.
+  double iou_epsilon = 1e-6;
+  // Th_aver: neighbourhood similarity S_aver above it boosts, below it penalises S_inst.
+  // Ours: S_aver = 1 - mean |a_k - b_k| of diag-normalised distances, so 0.9 means "the
+  // same-class neighbours lie on average within 10 % of the image diagonal of where they were".
+  double spatial_consistency_threshold = 0.9;
+  double consistency_boost = 0.1;    // paper: S_inst = min(1, S_inst + 0.1) when consistent
+  double consistency_penalty = 0.8;  // paper: S_inst = 0.8 S_inst when inconsistent
+  // paper: step 1, pairs with S_pos above this are a sure match (credited 1).
+  double sure_position = 0.95;
+  // paper: Th_dyna = max(dyna_floor, min(dyna_ceiling, dyna_ceiling - dyna_step min(n1, n2))).
+  double dyna_ceiling = 0.6;
+  double dyna_floor = 0.3;
+  double dyna_step = 0.05;
+  // Potentially moving COCO classes, dropped before matching (their position says nothing
+  // about the place). Same list as config/tum_fr1.yaml dynamic.active_classes.
+  std::vector<std::string> dynamic_classes = {
+      "person", "bicycle", "car",   "motorcycle", "bus", "train",    "truck", "boat",  "bird",
+      "cat",    "dog",     "horse", "sheep",      "cow", "elephant", "bear",  "zebra", "giraffe"};
+
+  // --- Score fusion ----------------------------------------------------------------------
+  double point_line_weight = 0.6;  // paper: S_fin = 0.6 S_pl + 0.4 S_inst_fin
+  double instance_weight = 0.4;
+
+  // --- Candidate selection ---------------------------------------------------------------
+  // alpha: minimum normalised score S_fin(query, cand) / S_fin(query, best covisible). The
+  // paper sweeps 0.1..0.8; 0.3 is DBoW2's usual normalised-score threshold.
+  double min_normalised_score = 0.3;
+  // A candidate is accepted once its group was consistent over this many consecutive queries
+  // (paper: 3 consecutive keyframes). The first query counts as 1.
+  int consistency = 3;
+
+  // --- Geometric check -------------------------------------------------------------------
+  int ransac_iterations = 200;        // 3-point hypotheses; 40 % inliers need ~70 for 99.9 %
+  unsigned ransac_seed = 42;          // fixed: the same input gives the same answer
+  int refine_iterations = 5;          // re-fit on the inliers until the set stops changing
+  double inlier_sigma_factor = 3.0;   // 3D inlier: |P_q - T P_c| < k sqrt(var(Z_q) + var(Z_c))
+  double min_inlier_distance = 0.01;  // m; floor of that bound (pixel noise, calibration)
+  DepthNoiseModel depth_noise;        // sigma_Z^2 = alpha Z^2 + beta Z + gamma
+  int min_inliers_3d = 15;            // at least this many 3D inliers (ORB-SLAM2 asks ~20)
+  double reprojection_px = 4.0;       // px, in both images
+  int min_reprojection_inliers = 15;  // at least this many matches reproject in both images
+};
+
+}  // namespace ply_slam
