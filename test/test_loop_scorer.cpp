@@ -46,6 +46,26 @@ TEST(PointLineScore, WeightsByEntropy) {
   EXPECT_NEAR(pointLineScore(0.1087, 0.1744, 0.0399, 0.0258), 0.1345, 1e-12);
 }
 
+TEST(ScoreLoopCandidate, FusesBowAndInstances) {
+  // Points: 4 equal words, H_p = ln 4; lines: 2 equal words, H_l = ln 2. Weights 2/3 and 1/3:
+  // S_pl = (2 * 0.3 + 0.6) / 3 = 0.4. One chair 10 px off: sure match, S_inst 1.
+  // S_fin = 0.6 * 0.4 + 0.4 * 1 = 0.64.
+  const FeatureEntropy h =
+      featureEntropy(BowWeights{{1, 1}, {2, 1}, {3, 1}, {4, 1}}, BowWeights{{9, 2}, {8, 2}});
+  EXPECT_NEAR(h.points, 2.0 * h.lines, 1e-12);
+  const InstanceFrame query{cv::Size(640, 480), {{"chair", cv::Rect2d(100, 100, 80, 60)}}};
+  const InstanceFrame candidate{cv::Size(640, 480), {{"chair", cv::Rect2d(110, 100, 80, 60)}}};
+  const LoopScore s = scoreLoopCandidate(0.3, 0.6, h, query, candidate, LoopOptions());
+  EXPECT_NEAR(s.point_line, 0.4, 1e-12);
+  EXPECT_DOUBLE_EQ(s.instance, 1.0);
+  EXPECT_EQ(s.instance_matches, 1);
+  EXPECT_NEAR(s.final_score, 0.64, 1e-12);
+  // Without instances the paper's S_inst_fin is 0: S_fin = 0.6 S_pl.
+  const InstanceFrame empty{cv::Size(640, 480), {}};
+  EXPECT_NEAR(scoreLoopCandidate(0.3, 0.6, h, empty, empty, LoopOptions()).final_score, 0.24,
+              1e-12);
+}
+
 LoopCandidate candidate(long id, double score, std::vector<long> covisible = {}) {
   return {id, score, std::move(covisible)};
 }

@@ -12,4 +12,16 @@ double finalLoopScore(double s_pl, double s_inst, const LoopOptions& options) {
   return options.point_line_weight * s_pl + options.instance_weight * s_inst;
 }
 
+LoopScore scoreLoopCandidate(double s_p, double s_l, const FeatureEntropy& query_entropy,
+                             const InstanceFrame& query, const InstanceFrame& candidate,
+                             const LoopOptions& options) {
+  LoopScore score;
+  score.point_line = pointLineScore(s_p, s_l, query_entropy.points, query_entropy.lines);
+  const InstanceSimilarity instances = instanceSimilarity(query, candidate, options);
+  score.instance = instances.score;
+  score.instance_matches = instances.matches;
+  score.final_score = finalLoopScore(score.point_line, score.instance, options);
+  return score;
+}
+
 }  // namespace ply_slam

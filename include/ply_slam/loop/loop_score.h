@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "ply_slam/loop/instance_similarity.h"
 #include "ply_slam/loop/loop_options.h"
 
 namespace ply_slam {
@@ -36,5 +37,30 @@ double pointLineScore(double s_p, double s_l, double h_p, double h_l);
 // S_fin = w_pl S_pl + w_inst S_inst_fin (0.6 / 0.4 in the paper). S_inst_fin is 0 when no
 // instance matched, as the paper defines it, so frames without objects score at most w_pl.
 double finalLoopScore(double s_pl, double s_inst, const LoopOptions& options);
+
+// H_p and H_l of a query keyframe: computed once per query, used for all its candidates.
+struct FeatureEntropy {
+  double points = 0.0;
+  double lines = 0.0;
+};
+
+template <typename BowVector>
+FeatureEntropy featureEntropy(const BowVector& point_bow, const BowVector& line_bow) {
+  return {bowEntropy(point_bow), bowEntropy(line_bow)};
+}
+
+// Every score of one query-candidate pair, for logging and precision-recall curves.
+struct LoopScore {
+  double point_line = 0.0;  // S_pl
+  double instance = 0.0;    // S_inst_fin
+  int instance_matches = 0;
+  double final_score = 0.0;  // S_fin
+};
+
+// S_fin of a candidate from its BoW similarities S_p, S_l (a BoW database computes them), the
+// query's entropies and both keyframes' instances.
+LoopScore scoreLoopCandidate(double s_p, double s_l, const FeatureEntropy& query_entropy,
+                             const InstanceFrame& query, const InstanceFrame& candidate,
+                             const LoopOptions& options);
 
 }  // namespace ply_slam
