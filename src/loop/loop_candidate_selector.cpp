@@ -1,6 +1,7 @@
 #include "ply_slam/loop/loop_candidate_selector.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace ply_slam {
 namespace {
