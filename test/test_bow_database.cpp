@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 #include "loop_test_data.h"
 #include "ply_slam/loop/binary_vocabulary.h"
@@ -101,6 +102,16 @@ TEST_F(BowDatabaseTest, RemovedAndExcludedKeyFramesAreNotReturned) {
       database.query(query.points, query.lines, 0, [](long id) { return id == 117 || id < 110; });
   EXPECT_FALSE(has(found, 117));
   EXPECT_FALSE(has(found, 105));
+}
+
+TEST_F(BowDatabaseTest, WordBeyondTheVocabularyChangesNothing) {
+  BowDatabase database = filledDatabase();
+  KeyFrameWords bad = words(points_[2], lines_[2]);
+  bad.lines.emplace_back(static_cast<WordId>(line_vocabulary_.numWords()), 1.0);
+  EXPECT_THROW(database.add(102, bad), std::out_of_range);
+  ASSERT_NE(database.find(102), nullptr);  // the old entry stays
+  const KeyFrameWords good = words(points_[2], lines_[2]);
+  EXPECT_EQ(database.query(good.points, good.lines, 1)[0].keyframe_id, 102);
 }
 
 TEST_F(BowDatabaseTest, DirectIndexMatchingFindsTheTruePairs) {

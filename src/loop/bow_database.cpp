@@ -2,17 +2,22 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace ply_slam {
 
 BowDatabase::BowDatabase(size_t point_words, size_t line_words)
     : point_index_(point_words), line_index_(line_words) {}
 
+void BowDatabase::check(const InvertedIndex& inverted, const BowVector& bow) {
+  for (const auto& entry : bow)
+    if (entry.first >= inverted.size())
+      throw std::out_of_range("BowDatabase: word " + std::to_string(entry.first) +
+                              " beyond the vocabulary's " + std::to_string(inverted.size()));
+}
+
 void BowDatabase::index(InvertedIndex& inverted, long keyframe_id, const BowVector& bow) {
-  for (const auto& [word, weight] : bow) {
-    if (word >= inverted.size()) throw std::out_of_range("BowDatabase: word beyond vocabulary");
-    inverted[word].push_back({keyframe_id, weight});
-  }
+  for (const auto& [word, weight] : bow) inverted[word].push_back({keyframe_id, weight});
 }
 
 void BowDatabase::unindex(InvertedIndex& inverted, long keyframe_id, const BowVector& bow) {
@@ -25,6 +30,8 @@ void BowDatabase::unindex(InvertedIndex& inverted, long keyframe_id, const BowVe
 }
 
 void BowDatabase::add(long keyframe_id, KeyFrameWords words) {
+  check(point_index_, words.points);  // before any change: a bad bag leaves the database as it was
+  check(line_index_, words.lines);
   remove(keyframe_id);
   normaliseL1(words.points);
   normaliseL1(words.lines);

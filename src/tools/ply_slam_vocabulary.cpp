@@ -175,7 +175,7 @@ int train(const Options& o) {
   const Stopwatch total;
   const TrainingImages images(o.images, o.video_step);
   std::cout << descriptorKindName(o.vocabulary.kind) << " descriptors of " << images.files().size()
-            << " files (videos: every " << o.video_step << "th frame)" << std::endl;
+            << " files (videos: one frame in " << o.video_step << ")" << std::endl;
   const Describer describer(o);
   const std::vector<cv::Mat> descriptors = describeAll(images, describer, o.vocabulary.kind);
   std::cout << "extraction " << total.elapsedMs() / 1000.0 << " s" << std::endl;

@@ -33,7 +33,8 @@ class BowDatabase {
   // The vocabularies' word counts (BinaryVocabulary::numWords()).
   BowDatabase(size_t point_words, size_t line_words);
 
-  // Adds or replaces a keyframe. The bags are stored at unit L1 norm.
+  // Adds or replaces a keyframe. The bags are stored at unit L1 norm. Throws
+  // std::out_of_range (and changes nothing) for a word beyond the vocabularies.
   void add(long keyframe_id, KeyFrameWords words);
   void remove(long keyframe_id);
   const KeyFrameWords* find(long keyframe_id) const;
@@ -51,6 +52,8 @@ class BowDatabase {
   };
   using InvertedIndex = std::vector<std::vector<Posting>>;  // word -> keyframes
 
+  // Throws std::out_of_range for a word the index does not have.
+  static void check(const InvertedIndex& inverted, const BowVector& bow);
   static void index(InvertedIndex& inverted, long keyframe_id, const BowVector& bow);
   static void unindex(InvertedIndex& inverted, long keyframe_id, const BowVector& bow);
   // Adds each keyframe's score against `bow` (at unit norm) into scores[keyframe].
