@@ -259,7 +259,10 @@ int benchmark(const Options& o) {
     candidates += static_cast<long>(found.size());
     right += !found.empty() && static_cast<size_t>(found[0].keyframe_id) % frames.size() == source;
   }
-  std::cout << frames.size() << " images; " << database.size()
+  long points = 0, lines = 0;
+  for (const FrameDescriptors& f : frames) points += f.orb.rows, lines += f.lbd.rows;
+  std::cout << frames.size() << " images (mean " << points / static_cast<long>(frames.size())
+            << " ORB, " << lines / static_cast<long>(frames.size()) << " LBD); " << database.size()
             << " keyframes (noisy copies, 8 of 256 bits flipped)\n"
             << "transform (orb + lbd) per keyframe: " << msText(transform_ms) << "\n"
             << "query (10 results): " << msText(query_ms) << "\n"
