@@ -215,6 +215,7 @@ void readDynamic(Section s, DynamicParams& d) {
   s.read("minority_share", f.consistency.minority_share);
   if (f.consistency.minority_share < 0 || f.consistency.minority_share > 1)
     s.fail("minority_share", "must be in [0, 1]");
+  s.readPositive("prediction_tolerance", f.consistency.prediction_tolerance);
   s.read("min_judged_features", f.min_judged_features);
   if (f.min_judged_features < 1) s.fail("min_judged_features", "must be >= 1");
   s.read("mask_dilation_px", d.mask_dilation_px);

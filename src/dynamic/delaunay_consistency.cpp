@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <opencv2/imgproc.hpp>
 
@@ -69,10 +71,47 @@ double DelaunayConsistency::noiseScale(const std::vector<double>& sigmas, double
 }
 
 std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorrespondence>& features,
-                                                 int width, int height) const {
+                                                 int width, int height,
+                                                 const StaticPrior& prior) const {
   std::vector<double> weight(features.size(), 0.0);
   if (features.size() < 3) return weight;
+  const EdgeGraph graph = buildGraph(features, width, height);
+  const Bodies bodies = growBodies(graph);
+  const std::vector<bool> seeds = staticSeeds(features, bodies, prior);
+  if (seeds.empty()) {
+    // Too small a body to fix the camera's motion by: the edges' votes, and the features of a
+    // clearly smaller body than the largest moved.
+    const size_t largest =
+        bodies.size.empty() ? 0 : *std::max_element(bodies.size.begin(), bodies.size.end());
+    for (size_t i = 0; i < features.size(); ++i)
+      if (graph.edges_of[i] > 0)
+        weight[i] = static_cast<double>(graph.bad_of[i]) / graph.edges_of[i];
+    for (size_t i = 0; i < features.size(); ++i)
+      if (bodies.of[i] >= 0 && bodies.size[bodies.of[i]] < params_.minority_share * largest)
+        weight[i] = 1.0;
+    return weight;
+  }
+  const std::vector<bool> inlier = carriedByStaticMotion(features, seeds);
+  // Now the moved end of a broken edge is known: the edge blames it alone.
+  for (size_t i = 0; i < features.size(); ++i) {
+    if (graph.edges_of[i] == 0) continue;
+    if (!inlier[i]) {
+      weight[i] = 1.0;
+      continue;
+    }
+    int edges = 0, broken = 0;
+    for (const auto& [j, ok] : graph.neighbours[i])
+      if (inlier[j]) {
+        ++edges;
+        broken += !ok;
+      }
+    weight[i] = edges > 0 ? static_cast<double>(broken) / edges : 0.0;
+  }
+  return weight;
+}
 
+DelaunayConsistency::EdgeGraph DelaunayConsistency::buildGraph(
+    const std::vector<FeatureCorrespondence>& features, int width, int height) const {
   // Subdiv2D reports edges by position: map positions back to features (a duplicate
   // position keeps the first feature).
   cv::Subdiv2D subdiv(cv::Rect(-1, -1, width + 2, height + 2));
@@ -84,9 +123,10 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
     if (!at.emplace(std::make_pair(p.x, p.y), i).second) continue;
     subdiv.insert(p);
   }
-
-  std::vector<int> edges_of(features.size(), 0), bad_of(features.size(), 0);
-  std::vector<std::vector<std::pair<size_t, bool>>> neighbours(features.size());  // (j, consistent)
+  EdgeGraph g;
+  g.edges_of.assign(features.size(), 0);
+  g.bad_of.assign(features.size(), 0);
+  g.neighbours.resize(features.size());
   std::vector<cv::Vec4f> edge_list;
   subdiv.getEdgeList(edge_list);
   // Edges to the outer virtual vertices find no feature and are skipped.
@@ -108,67 +148,93 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
     // A broken edge says one of its ends moved, not which: both get the vote.
     const bool bad = exceeds(changes[k], edge_scale);
     for (size_t f : {ia, ib}) {
-      ++edges_of[f];
-      bad_of[f] += bad;
+      ++g.edges_of[f];
+      g.bad_of[f] += bad;
     }
-    neighbours[ia].push_back({ib, !bad});
-    neighbours[ib].push_back({ia, !bad});
+    g.neighbours[ia].push_back({ib, !bad});
+    g.neighbours[ib].push_back({ia, !bad});
   }
+  return g;
+}
 
+DelaunayConsistency::Bodies DelaunayConsistency::growBodies(const EdgeGraph& g) const {
   // A body moving as a whole keeps its inner edges: only its rim votes. So the features are
   // grown into rigid bodies: a feature joins a body when more of its edges into the body are
-  // consistent than broken (a single edge across the motion keeps its length by chance). The
-  // static scene is the largest body.
-  std::vector<int> body(features.size(), -1);
-  std::vector<size_t> body_size;
+  // consistent than broken (a single edge across the motion keeps its length by chance).
+  const size_t n = g.edges_of.size();
+  Bodies bodies;
+  bodies.of.assign(n, -1);
   std::vector<size_t> seeds;
-  for (size_t i = 0; i < features.size(); ++i)
-    if (edges_of[i] > 0) seeds.push_back(i);
+  for (size_t i = 0; i < n; ++i)
+    if (g.edges_of[i] > 0) seeds.push_back(i);
   std::stable_sort(seeds.begin(), seeds.end(), [&](size_t x, size_t y) {
-    return edges_of[x] - bad_of[x] > edges_of[y] - bad_of[y];
+    return g.edges_of[x] - g.bad_of[x] > g.edges_of[y] - g.bad_of[y];
   });
   for (size_t seed : seeds) {
-    if (body[seed] >= 0) continue;
-    const int id = static_cast<int>(body_size.size());
-    body[seed] = id;
+    if (bodies.of[seed] >= 0) continue;
+    const int id = static_cast<int>(bodies.size.size());
+    bodies.of[seed] = id;
     size_t size = 1;
     std::vector<size_t> candidates;
-    for (const auto& [j, ok] : neighbours[seed])
+    for (const auto& [j, ok] : g.neighbours[seed])
       if (ok) candidates.push_back(j);
     while (!candidates.empty()) {
       const size_t c = candidates.back();
       candidates.pop_back();
-      if (body[c] >= 0) continue;
+      if (bodies.of[c] >= 0) continue;
       int consistent = 0, broken = 0;
-      for (const auto& [j, ok] : neighbours[c])
-        if (body[j] == id) ++(ok ? consistent : broken);
+      for (const auto& [j, ok] : g.neighbours[c])
+        if (bodies.of[j] == id) ++(ok ? consistent : broken);
       if (consistent <= broken) continue;  // looked at again when another neighbour joins
-      body[c] = id;
+      bodies.of[c] = id;
       ++size;
-      for (const auto& [j, ok] : neighbours[c])
-        if (body[j] < 0) candidates.push_back(j);
+      for (const auto& [j, ok] : g.neighbours[c])
+        if (bodies.of[j] < 0) candidates.push_back(j);
     }
-    body_size.push_back(size);
+    bodies.size.push_back(size);
   }
-  const auto largest_body = std::max_element(body_size.begin(), body_size.end());
-  const size_t largest = largest_body == body_size.end() ? 0 : *largest_body;
-  if (largest < 3) {
-    // Too small a body to fix the camera's motion by: the edges' votes, and the features of a
-    // clearly smaller body than the largest moved.
-    for (size_t i = 0; i < features.size(); ++i)
-      if (edges_of[i] > 0) weight[i] = static_cast<double>(bad_of[i]) / edges_of[i];
-    for (size_t i = 0; i < features.size(); ++i)
-      if (body[i] >= 0 && body_size[body[i]] < params_.minority_share * largest) weight[i] = 1.0;
-    return weight;
-  }
+  return bodies;
+}
 
+std::vector<bool> DelaunayConsistency::staticSeeds(
+    const std::vector<FeatureCorrespondence>& features, const Bodies& bodies,
+    const StaticPrior& prior) const {
+  // Which features are the static scene to start from. A person a metre away covers half
+  // the image, and a torso is rigid too: with the people in view most of the edges, the body
+  // grown over the consistent ones joins people and background, or is a person. So, first:
+  // the features the camera's predicted motion carries onto where they are now (a walker
+  // moves 5-15 cm over the baseline, the prediction errs by a few cm); then those off
+  // instances of moving classes; and only then the largest body.
+  const size_t n = features.size();
+  std::vector<bool> seed(n, false);
+  if (prior.predicted_motion) {
+    size_t count = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const Change r = residual(features[i], *prior.predicted_motion);
+      seed[i] = r.metres <= params_.prediction_tolerance;
+      count += seed[i];
+    }
+    if (count >= kMinSeeds) return seed;
+  }
+  const auto largest = std::max_element(bodies.size.begin(), bodies.size.end());
+  if (largest == bodies.size.end() || *largest < 3) return {};
+  const int body = static_cast<int>(largest - bodies.size.begin());
+  size_t count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    seed[i] = bodies.of[i] == body && !(prior.on_moving_class && (*prior.on_moving_class)[i]);
+    count += seed[i];
+  }
+  if (count >= kMinSeeds) return seed;
+  for (size_t i = 0; i < n; ++i) seed[i] = bodies.of[i] == body;
+  return seed;
+}
+
+std::vector<bool> DelaunayConsistency::carriedByStaticMotion(
+    const std::vector<FeatureCorrespondence>& features, std::vector<bool> inlier) const {
   // Distances along one edge are blind to motion across it, and long edges in depth are
-  // noisy. The largest body fixes the camera's motion between the frames: every feature that
+  // noisy. The static features fix the camera's motion between the frames: every feature that
   // this motion does not carry onto its current position, beyond its noise, moved (this
   // replaces the edge votes of every feature with an edge).
-  const int static_body = static_cast<int>(largest_body - body_size.begin());
-  std::vector<bool> inlier(features.size());
-  for (size_t i = 0; i < features.size(); ++i) inlier[i] = body[i] == static_body;
   for (int round = 0; round < 2; ++round) {
     const Eigen::Isometry3d motion = rigidMotion(features, inlier);
     std::vector<Change> residuals;
@@ -180,22 +246,7 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
     const double scale = noiseScale(static_sigmas, 1.5382);  // median of a 3-DoF chi
     for (size_t i = 0; i < features.size(); ++i) inlier[i] = !exceeds(residuals[i], scale);
   }
-  // Now the moved end of a broken edge is known: the edge blames it alone.
-  for (size_t i = 0; i < features.size(); ++i) {
-    if (edges_of[i] == 0) continue;
-    if (!inlier[i]) {
-      weight[i] = 1.0;
-      continue;
-    }
-    int edges = 0, broken = 0;
-    for (const auto& [j, ok] : neighbours[i])
-      if (inlier[j]) {
-        ++edges;
-        broken += !ok;
-      }
-    weight[i] = edges > 0 ? static_cast<double>(broken) / edges : 0.0;
-  }
-  return weight;
+  return inlier;
 }
 
 }  // namespace ply_slam

@@ -5,9 +5,15 @@ namespace ply_slam {
 DynamicDecision DynamicFeatureFilter::decide(const std::vector<FeatureCorrespondence>& features,
                                              const std::vector<int>& instance,
                                              const std::map<int, ClassMotion>& motion, int width,
-                                             int height) const {
+                                             int height,
+                                             const Eigen::Isometry3d* predicted_motion) const {
   DynamicDecision d;
-  d.weight = consistency_.weights(features, width, height);
+  std::vector<bool> on_moving_class(features.size(), false);
+  for (size_t i = 0; i < features.size(); ++i) {
+    const auto kind = motion.find(instance[i]);
+    on_moving_class[i] = kind != motion.end() && kind->second == ClassMotion::kActive;
+  }
+  d.weight = consistency_.weights(features, width, height, {predicted_motion, &on_moving_class});
   d.dynamic.assign(features.size(), false);
 
   std::map<int, int> all, voted;  // per instance: N_all and w_lab

@@ -121,9 +121,9 @@ DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double st
   } else {
     std::vector<size_t> feature_of;
     std::vector<FeatureCorrespondence> matched;
+    std::optional<Eigen::Isometry3d> T_cur_prev;
     if (!earlier_.empty()) {
       const Earlier& earlier = earlier_.front();
-      std::optional<Eigen::Isometry3d> T_cur_prev;
       if (velocity && stamp > earlier.stamp) T_cur_prev = velocity->over(stamp - earlier.stamp);
       matched = correspondences(earlier.features, current, T_cur_prev, feature_of);
     }
@@ -141,7 +141,8 @@ DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double st
           }
       }
     }
-    const DynamicDecision d = filter_.decide(matched, label, motion, camera_.width, camera_.height);
+    const DynamicDecision d = filter_.decide(matched, label, motion, camera_.width, camera_.height,
+                                             T_cur_prev ? &*T_cur_prev : nullptr);
     for (size_t k = 0; k < matched.size(); ++k)
       if (d.weight[k] > params_.filter.weight_threshold)
         r.fate[feature_of[k]] = FeatureFate::kGeometric;

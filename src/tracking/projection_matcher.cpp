@@ -15,6 +15,16 @@ int descriptorDistance(const cv::Mat& a, const cv::Mat& b) {
   return distance;
 }
 
+bool ProjectionMatcher::occluded(const Frame& frame, const Eigen::Vector2d& uv,
+                                 const Eigen::Vector3d& pc,
+                                 const ProjectionMatchParams& params) const {
+  const cv::Mat& depth = frame.features.depth_image;
+  if (depth.empty()) return false;
+  const double z = depth_.atRaw(depth, depth_.distort(uv));
+  // The same margin as the depth gate of a match: nearer than that is another surface.
+  return z > 0.0 && z < pc.z() - (params.depth_gate * pc.z() + 0.05);
+}
+
 int ProjectionMatcher::match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
                              const std::vector<int>* levels,
                              const ProjectionMatchParams& params) const {
@@ -44,6 +54,7 @@ int ProjectionMatcher::match(Frame& frame, const std::vector<std::shared_ptr<Map
       level = point->predictLevel(distance, log_scale_, num_levels_);
     }
     point->last_projected_frame = frame.id;
+    if (occluded(frame, uv, pc, params)) continue;
     ++point->visible;
 
     const double radius = params.radius_px * (*f.scales)[level];

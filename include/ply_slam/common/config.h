@@ -93,6 +93,9 @@ struct DelaunayConsistencyParams {
   // fixes the camera's motion. Only when it has fewer than 3 features to fit that motion by:
   // those of a body smaller than this share of the largest get weight 1.
   double minority_share = 0.5;
+  // m; the predicted camera motion carries a static feature within this of where it is (the
+  // constant-velocity prediction errs by ~1 cm over the baseline; a walker moves 5-15 cm).
+  double prediction_tolerance = 0.03;
 };
 
 // Label dynamic degree and the rejection rules (PAPER.md §3.2).

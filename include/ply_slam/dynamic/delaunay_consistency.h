@@ -7,6 +7,14 @@
 
 namespace ply_slam {
 
+// What is known, beside the features themselves, about which of them are static.
+struct StaticPrior {
+  // The camera's motion from the previous to the current frame as the tracker predicts it.
+  const Eigen::Isometry3d* predicted_motion = nullptr;
+  // Per feature: on an instance of a class that moves by itself (people, animals, vehicles).
+  const std::vector<bool>* on_moving_class = nullptr;
+};
+
 // One feature matched between the previous and the current frame, with its 3D position in
 // each frame's camera coordinates (distances between points do not depend on the frame).
 struct FeatureCorrespondence {
@@ -21,9 +29,10 @@ struct FeatureCorrespondence {
 // feature is the share of its edges that changed more than the noise allows: the endpoints'
 // covariances (depth noise sigma_Z^2 along the ray, pixel noise across it, as in §3.1)
 // projected on the edge. Beyond the paper: features joined by consistent edges form rigid
-// bodies, and a body clearly smaller than the largest (the static scene) moved as a whole —
-// its inner edges never break, so the per-edge vote alone sees only its rim; and the camera
-// motion fitted to the largest body must carry each feature onto its current position.
+// bodies (a body that moves as a whole never breaks its inner edges, so the per-edge vote
+// alone sees only its rim); the static scene is taken from the features the predicted camera
+// motion carries, else from the largest body's features off people, and the camera motion
+// fitted to it must carry each feature onto its current position.
 class DelaunayConsistency {
  public:
   DelaunayConsistency(const PinholeCamera& camera, const DelaunayConsistencyParams& params)
@@ -31,7 +40,7 @@ class DelaunayConsistency {
 
   // Weight in [0, 1] per correspondence (0 for features without edges).
   std::vector<double> weights(const std::vector<FeatureCorrespondence>& features, int width,
-                              int height) const;
+                              int height, const StaticPrior& prior = {}) const;
 
  private:
   // A change in metres and in standard deviations of its modelled noise.
@@ -46,6 +55,28 @@ class DelaunayConsistency {
   // How much larger than modelled the noise of mostly static measurements is (>= 1), from the
   // median of their normalised changes and that median for unit noise.
   static double noiseScale(const std::vector<double>& sigmas, double median_of_unit);
+
+  struct EdgeGraph {
+    std::vector<int> edges_of, bad_of;                             // per feature
+    std::vector<std::vector<std::pair<size_t, bool>>> neighbours;  // (j, consistent)
+  };
+  struct Bodies {
+    std::vector<int> of;       // per feature: body id, -1 without edges
+    std::vector<size_t> size;  // per body
+  };
+  EdgeGraph buildGraph(const std::vector<FeatureCorrespondence>& features, int width,
+                       int height) const;
+  Bodies growBodies(const EdgeGraph& graph) const;
+  // Enough features to fit a motion to with some redundancy.
+  static constexpr size_t kMinSeeds = 10;
+  // Per feature: taken as static to fit the camera's motion to first; empty when nothing is
+  // (no body with the 3 features a motion needs).
+  std::vector<bool> staticSeeds(const std::vector<FeatureCorrespondence>& features,
+                                const Bodies& bodies, const StaticPrior& prior) const;
+  // Per feature: the motion fitted to the static features (starting from `inlier`) carries it
+  // onto its current position.
+  std::vector<bool> carriedByStaticMotion(const std::vector<FeatureCorrespondence>& features,
+                                          std::vector<bool> inlier) const;
 
   // Variance of a back-projected point along unit direction d: depth noise along its ray,
   // pixel noise across it.

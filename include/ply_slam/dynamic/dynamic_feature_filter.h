@@ -32,10 +32,12 @@ class DynamicFeatureFilter {
   DynamicFeatureFilter(const PinholeCamera& camera, const DynamicFilterParams& params)
       : consistency_(camera, params.consistency), params_(params) {}
 
-  // instance[i]: the instance id under feature i, or 0; motion: class kind per instance id.
+  // instance[i]: the instance id under feature i, or 0; motion: class kind per instance id;
+  // predicted_motion: the camera's from the previous to the current frame, when known.
   DynamicDecision decide(const std::vector<FeatureCorrespondence>& features,
                          const std::vector<int>& instance, const std::map<int, ClassMotion>& motion,
-                         int width, int height) const;
+                         int width, int height,
+                         const Eigen::Isometry3d* predicted_motion = nullptr) const;
 
  private:
   DelaunayConsistency consistency_;

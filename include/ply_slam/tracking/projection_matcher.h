@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/features/registered_depth.h"
 #include "ply_slam/tracking/frame.h"
 
 namespace ply_slam {
@@ -21,17 +22,24 @@ struct ProjectionMatchParams {
 // Matches landmarks to the frame's features by projecting them with frame.T_cw and searching
 // a window around the projection. `levels` (optional, parallel to `points`) fixes the
 // expected pyramid level of each point; otherwise the level is predicted from distance.
-// Features that already hold a landmark are left alone. Returns the number of new matches.
+// Features that already hold a landmark are left alone. A landmark behind something nearer
+// in the frame's depth image (a person in front of the wall) is neither searched for nor
+// counted as visible: it was not in view. Returns the number of new matches.
 class ProjectionMatcher {
  public:
   ProjectionMatcher(const PinholeCamera& camera, double log_scale, int num_levels)
-      : camera_(camera), log_scale_(log_scale), num_levels_(num_levels) {}
+      : camera_(camera), depth_(camera), log_scale_(log_scale), num_levels_(num_levels) {}
 
   int match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
             const std::vector<int>* levels, const ProjectionMatchParams& params) const;
 
  private:
+  // Something in the depth image lies clearly in front of the landmark at pc.
+  bool occluded(const Frame& frame, const Eigen::Vector2d& uv, const Eigen::Vector3d& pc,
+                const ProjectionMatchParams& params) const;
+
   const PinholeCamera& camera_;
+  RegisteredDepth depth_;
   double log_scale_;
   int num_levels_;
 };
