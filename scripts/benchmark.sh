@@ -37,6 +37,7 @@ if [ ${#SEQUENCES[@]} -eq 0 ]; then
   SEQUENCES=(
     "${PLY_SLAM_SHARED}/data/tum/rgbd_dataset_freiburg1_xyz_37"
     "${PLY_SLAM_SHARED}/data/tum/rgbd_dataset_freiburg1_rpy_150_349"
+    "${PLY_SLAM_SHARED}/data/bonn/rgbd_bonn_crowd_150_449"
   )
 fi
 
@@ -73,15 +74,18 @@ with open(path) as f:
 EOF
 }
 
-# evaluate GT EST DIR: writes DIR/ate.json and DIR/rpe.json; returns 1 when either fails.
+# evaluate GT EST DIR: writes DIR/ate.json, DIR/rpe.json (consecutive frames) and
+# DIR/rpe_1s.json; returns 1 when any fails.
 evaluate() {
   local gt="$1" est="$2" dir="$3" ok=0
-  rm -f "$dir/ate.json" "$dir/rpe.json"
+  rm -f "$dir/ate.json" "$dir/rpe.json" "$dir/rpe_1s.json"
   "${PLY_SLAM_BIN}/ply_slam_eval" ate "$gt" "$est" --json >"$dir/ate.json.tmp" &&
     mv "$dir/ate.json.tmp" "$dir/ate.json" || ok=1
   "${PLY_SLAM_BIN}/ply_slam_eval" rpe "$gt" "$est" --delta 1 --json >"$dir/rpe.json.tmp" &&
     mv "$dir/rpe.json.tmp" "$dir/rpe.json" || ok=1
-  rm -f "$dir/ate.json.tmp" "$dir/rpe.json.tmp"
+  "${PLY_SLAM_BIN}/ply_slam_eval" rpe "$gt" "$est" --delta-seconds 1 --json >"$dir/rpe_1s.json.tmp" &&
+    mv "$dir/rpe_1s.json.tmp" "$dir/rpe_1s.json" || ok=1
+  rm -f "$dir/ate.json.tmp" "$dir/rpe.json.tmp" "$dir/rpe_1s.json.tmp"
   return $ok
 }
 
@@ -89,12 +93,15 @@ evaluate() {
 add_row() {
   local name="$1" method="$2" dir="$3" timing="$4" run_ok="$5"
   if [ "$run_ok" -ne 0 ]; then
-    echo "| $name | $method | failed | failed | failed | failed |" >>"$ROWS"
+    echo "| $name | $method | failed | failed | failed | failed | failed | failed | failed |" >>"$ROWS"
     return
   fi
   echo "| $name | $method | $(json_value "$dir/ate.json" rmse .4f)" \
     "| $(json_value "$dir/rpe.json" trans_rmse .4f)" \
     "| $(json_value "$dir/rpe.json" rot_rmse_deg .3f)" \
+    "| $(json_value "$dir/rpe_1s.json" trans_rmse .4f)" \
+    "| $(json_value "$dir/rpe.json" trans_max .4f)" \
+    "| $(json_value "$timing" lost .0f)" \
     "| $(json_value "$timing" tracking_ms_median .1f) |" >>"$ROWS"
 }
 
@@ -149,10 +156,12 @@ trap 'rm -f "$ROWS" "$SECTION"' EXIT
   echo "  frame (features + tracking)."
   echo "- OpenCV RgbdOdometry: \`ply_slam_rgbd_odometry\`, opencv_contrib \`rgbd::RgbdOdometry\`"
   echo "  with default parameters, frame to frame, no map; ms per frame = median odometry time."
-  echo "- ATE: RMSE after rigid alignment (no scale); RPE: RMSE over consecutive frames."
+  echo "- ATE: RMSE after rigid alignment (no scale); RPE: RMSE over consecutive frames and"
+  echo "  over 1 s; largest jump: the largest translation error between consecutive frames;"
+  echo "  lost: frames ply_slam could not track (RgbdOdometry reports none)."
   echo
-  echo "| sequence | method | ATE RMSE (m) | RPE trans (m/frame) | RPE rot (deg/frame) | ms per frame |"
-  echo "|---|---|---:|---:|---:|---:|"
+  echo "| sequence | method | ATE RMSE (m) | RPE trans (m/frame) | RPE rot (deg/frame) | RPE trans (m/s) | largest jump (m) | lost | ms per frame |"
+  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
   cat "$ROWS"
   echo "<!-- benchmark:end -->"
 } >"$SECTION"

@@ -66,8 +66,10 @@ ply_slam_config_for() {
   name="$(basename "$1")"
   if [[ "$name" =~ (freiburg|fr)([123]) ]]; then
     echo "${PLY_SLAM_ROOT}/config/tum_fr${BASH_REMATCH[2]}.yaml"
+  elif [[ "$name" =~ bonn ]]; then
+    echo "${PLY_SLAM_ROOT}/config/bonn.yaml"
   else
-    echo "cannot choose a config for '$name' (expected freiburg1/2/3 in the folder name;" \
+    echo "cannot choose a config for '$name' (expected freiburg1/2/3 or bonn in the folder name;" \
       "set PLY_SLAM_CONFIG to a config file)" >&2
     return 1
   fi

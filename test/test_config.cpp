@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -105,6 +106,7 @@ TEST(ShippedConfig, EveryFileLoadsWithItsDocumentedIntrinsics) {
       {"tum_fr2.yaml", 520.9, 521.0, 325.1, 249.7, 5000.0, true},
       {"tum_fr3.yaml", 535.4, 539.2, 320.1, 247.6, 5000.0, false},
       {"d435i.yaml", 615.0, 615.0, 320.0, 240.0, 1000.0, false},
+      {"bonn.yaml", 542.822841, 542.576870, 315.593520, 237.756098, 5000.0, false},
   };
   // Every shipped file is covered: a new one must be added here.
   size_t yaml_files = 0;
@@ -255,6 +257,19 @@ TEST_F(ConfigFileTest, NegativeOrZeroValues) {
                     {"orb.scale_factor"});
   expectConfigError(writeEdited("noise.yaml", "gamma: 1.0e-6", "gamma: -1.0"),
                     {"camera.depth_noise"});
+}
+
+TEST_F(ConfigFileTest, DepthNoiseQuarticTerm) {
+  // delta Z^4: the disparity error of structured light and stereo (sigma_Z grows with Z^2).
+  const SystemConfig c = loadConfig(
+      writeEdited("delta.yaml", "    gamma: 1.0e-6\n", "    gamma: 0.0\n    delta: 2.5e-5\n"));
+  EXPECT_DOUBLE_EQ(c.camera.depth_noise.delta, 2.5e-5);
+  // sigma_Z = 5e-3 Z^2 beside alpha's 2.5e-3 Z: 4.6 cm at 3 m.
+  EXPECT_NEAR(std::sqrt(c.camera.depth_noise.variance(3.0)), std::sqrt(6.25e-6 * 9 + 2.5e-5 * 81),
+              1e-12);
+  expectConfigError(writeEdited("negative_delta.yaml", "    gamma: 1.0e-6\n",
+                                "    gamma: 1.0e-6\n    delta: -1.0e-5\n"),
+                    {"camera.depth_noise.delta", ">= 0"});
 }
 
 TEST_F(ConfigFileTest, MaxDepthNotAboveMinDepth) {

@@ -98,6 +98,8 @@ void readCamera(Section s, PinholeCamera& c) {
   n.read("alpha", c.depth_noise.alpha);
   n.read("beta", c.depth_noise.beta);
   n.read("gamma", c.depth_noise.gamma);
+  n.read("delta", c.depth_noise.delta);
+  if (!(c.depth_noise.delta >= 0.0)) n.fail("delta", "must be >= 0");
   n.rejectUnknownKeys();
   if (c.depth_noise.variance(c.min_depth) <= 0 || c.depth_noise.variance(c.max_depth) <= 0)
     n.fail("alpha",

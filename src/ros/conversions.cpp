@@ -81,6 +81,7 @@ CameraMsg toMsg(const PinholeCamera& c) {
   m.depth_noise_alpha = c.depth_noise.alpha;
   m.depth_noise_beta = c.depth_noise.beta;
   m.depth_noise_gamma = c.depth_noise.gamma;
+  m.depth_noise_delta = c.depth_noise.delta;
   m.rolling_shutter_readout = c.rolling_shutter_readout;
   return m;
 }
@@ -98,7 +99,8 @@ PinholeCamera fromMsg(const CameraMsg& m) {
   c.depth_factor = m.depth_factor;
   c.min_depth = m.min_depth;
   c.max_depth = m.max_depth;
-  c.depth_noise = {m.depth_noise_alpha, m.depth_noise_beta, m.depth_noise_gamma};
+  c.depth_noise = {m.depth_noise_alpha, m.depth_noise_beta, m.depth_noise_gamma,
+                   m.depth_noise_delta};
   c.rolling_shutter_readout = m.rolling_shutter_readout;
   return c;
 }

@@ -45,7 +45,7 @@ KeyFramePacket fullPacket() {
   p.camera.width = 64, p.camera.height = 48;
   p.camera.distortion = (cv::Mat_<double>(1, 5) << 0.26, -0.95, -0.005, 0.002, 1.16);
   p.camera.depth_factor = 5000, p.camera.min_depth = 0.3, p.camera.max_depth = 6;
-  p.camera.depth_noise = {2.5e-5, 1e-6, 1e-5};
+  p.camera.depth_noise = {2.5e-5, 1e-6, 1e-5, 2.5e-5};
   p.camera.rolling_shutter_readout = 0.02;
   cv::RNG rng(3);
   p.descriptors = cv::Mat(5, 32, CV_8U);
@@ -84,6 +84,7 @@ TEST(RosConversions, KeyFramePacketRoundTrip) {
   EXPECT_EQ(q.camera.width, p.camera.width);
   EXPECT_TRUE(sameImage(q.camera.distortion, p.camera.distortion));
   EXPECT_EQ(q.camera.depth_noise.beta, p.camera.depth_noise.beta);
+  EXPECT_EQ(q.camera.depth_noise.delta, p.camera.depth_noise.delta);
   EXPECT_EQ(q.camera.rolling_shutter_readout, p.camera.rolling_shutter_readout);
   EXPECT_EQ(q.camera.max_depth, p.camera.max_depth);
   EXPECT_EQ(q.keypoints, p.keypoints);
