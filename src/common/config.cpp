@@ -177,6 +177,7 @@ void readTracking(Section s, TrackingParams& t) {
   s.readPositive("keyframe_max_frames", t.keyframe_max_frames);
   s.readPositive("keyframe_translation", t.keyframe_translation);
   s.readPositive("keyframe_rotation_deg", t.keyframe_rotation_deg);
+  s.readPositive("max_prediction_error", t.max_prediction_error);
   s.readPositive("pnp_iterations", t.pnp_iterations);
   s.readPositive("pnp_reprojection_px", t.pnp_reprojection_px);
   s.readPositive("max_point_depth", t.max_point_depth);

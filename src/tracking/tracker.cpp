@@ -85,7 +85,8 @@ TrackingResult Tracker::track(Frame& frame) {
     if (ok) {
       inliers = trackLocalMap(frame);
       // Line inliers count as tracked features too (none when lines are disabled).
-      ok = inliers + frame.numLineMatches() >= config_.tracking.min_tracked_points;
+      ok = inliers + frame.numLineMatches() >= config_.tracking.min_tracked_points &&
+           !farFromPrediction(frame);
     }
     if (ok) {
       // A velocity needs two consecutive tracked frames close enough in time.
@@ -111,6 +112,16 @@ TrackingResult Tracker::track(Frame& frame) {
   result.T_cw = frame.T_cw;
   if (state_ == TrackingState::kOk) last_frame_ = std::make_unique<Frame>(frame);
   return result;
+}
+
+bool Tracker::farFromPrediction(const Frame& frame) const {
+  if (!has_velocity_ || state_ != TrackingState::kOk) return false;
+  const Eigen::Isometry3d predicted =
+      velocity_.over(frame.stamp - last_frame_->stamp) * last_frame_->T_cw;
+  // Camera centres: where the prediction and the solve put the camera.
+  const Eigen::Vector3d gap =
+      frame.T_cw.inverse().translation() - predicted.inverse().translation();
+  return gap.norm() > config_.tracking.max_prediction_error;
 }
 
 bool Tracker::initialise(Frame& frame) {

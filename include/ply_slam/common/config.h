@@ -60,7 +60,7 @@ struct TrackingParams {
   int search_radius_px = 15;            // projection matching window at scale level 0
   int max_descriptor_distance = 60;     // Hamming, accept a match below this
   double nn_ratio = 0.9;                // best / second best distance
-  int min_tracked_points = 30;          // fewer inliers: tracking is lost
+  int min_tracked_points = 15;          // fewer inliers: tracking is lost
   int local_map_keyframes = 10;         // covisible keyframes whose points form the local map
   double chi2_outlier = 5.991;          // 2-DoF chi-square 95 %: outlier above
   int optimisation_rounds = 4;          // outlier re-classification rounds
@@ -68,7 +68,10 @@ struct TrackingParams {
   int keyframe_max_frames = 5;          // or after this many frames
   double keyframe_translation = 0.10;   // m, or after moving this far
   double keyframe_rotation_deg = 15.0;  // or after turning this far
-  int pnp_iterations = 200;             // RANSAC iterations when projection matching fails
+  // m; a tracked pose this far from the constant-velocity prediction is a wrong solve (a
+  // camera does not move 15 cm beyond its prediction in one frame), not a motion: lost.
+  double max_prediction_error = 0.15;
+  int pnp_iterations = 200;  // RANSAC iterations when projection matching fails
   double pnp_reprojection_px = 4.0;
   double max_point_depth = 6.0;  // m; points beyond are not mapped (depth noise grows as Z^2)
 };

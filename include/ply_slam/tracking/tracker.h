@@ -39,6 +39,8 @@ class Tracker {
 
  private:
   bool initialise(Frame& frame);
+  // The solved pose lies further from the constant-velocity prediction than a camera moves.
+  bool farFromPrediction(const Frame& frame) const;
   bool trackWithMotionModel(Frame& frame);
   bool trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates);
   bool relocalise(Frame& frame);
