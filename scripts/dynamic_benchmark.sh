@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Dynamic-feature rejection on the shared walkers sequence and its static twin (issue #5):
-# ATE for every --dynamic mode with YOLO and with the ground-truth masks, the feature-level
-# classification against the ground-truth masks, tracking and segmentation ms.
+# Dynamic-feature rejection on the shared walkers sequence and its static twin: ATE for every
+# --dynamic mode with YOLO and with the ground-truth masks, the feature-level classification
+# against the ground-truth masks, tracking and segmentation ms; and on the real Bonn crowd
+# window (config/bonn.yaml): off, geometric, YOLO 480x640 full offline and live.
 #
 #   scripts/dynamic_benchmark.sh [--no-build] [--models "640x640 320x320"]
 #
@@ -24,7 +25,8 @@ done
 
 WALKERS="${PLY_SLAM_SHARED}/data/dynamic/fr1_rpy_150_349_walkers"
 STATIC="${PLY_SLAM_SHARED}/data/tum/rgbd_dataset_freiburg1_rpy_150_349"
-for d in "$WALKERS" "$STATIC"; do
+BONN="${PLY_SLAM_SHARED}/data/bonn/rgbd_bonn_crowd_150_449"
+for d in "$WALKERS" "$STATIC" "$BONN"; do
   [ -d "$d" ] || { echo "dynamic_benchmark: missing $d" >&2; exit 1; }
 done
 if [ "$BUILD" -eq 1 ]; then
@@ -38,15 +40,18 @@ CONFIG="${PLY_SLAM_ROOT}/config/tum_fr1.yaml"
 ROWS="$OUT/rows.tsv"
 : >"$ROWS"
 
-run() {  # name sequence segmenter mode [model size]
+run() {  # name sequence segmenter mode [model size HxW] [more ply_slam_tum options]
   local name=$1 seq=$2 seg=$3 mode=$4 args=()
   if [ "$seg" = yolo ]; then
-    args=(--model "${PLY_SLAM_SHARED}/models/yolov8n-seg-$5.onnx" --input "$5")
+    # Model files are named HxW; --input takes WxH.
+    args=(--model "${PLY_SLAM_SHARED}/models/yolov8n-seg-$5.onnx" --input "${5#*x}x${5%x*}")
   fi
+  args+=("${@:6}")
   echo "[dynamic] $name"
   rm -rf "${OUT:?}/$name"  # a failed run must not leave an old summary behind
-  "${PLY_SLAM_BIN}/ply_slam_tum" --sequence "$seq" --config "$CONFIG" --out "$OUT/$name" \
-    --segmenter "$seg" --dynamic "$mode" "${args[@]}" >"$OUT/$name.log" 2>&1 </dev/null ||
+  "${PLY_SLAM_BIN}/ply_slam_tum" --sequence "$seq" --config "${RUN_CONFIG:-$CONFIG}" \
+    --out "$OUT/$name" --segmenter "$seg" --dynamic "$mode" "${args[@]}" \
+    >"$OUT/$name.log" 2>&1 </dev/null ||
     echo "[dynamic] $name failed: $OUT/$name.log" >&2
   printf '%s\t%s\n' "$name" "$OUT/$name/summary.json" >>"$ROWS"
 }
@@ -60,12 +65,19 @@ for size in $MODELS; do
     run "walkers_yolo${size}_$mode" "$WALKERS" yolo "$mode" "$size"
   done
 done
+export RUN_CONFIG="${PLY_SLAM_ROOT}/config/bonn.yaml"
+run bonn_off "$BONN" none off
+run bonn_geometric "$BONN" none geometric
+run bonn_yolo480x640_full "$BONN" yolo full 480x640
+run bonn_yolo480x640_full_live "$BONN" yolo full 480x640 --live
+unset RUN_CONFIG
 
 /usr/bin/python3 - "$ROWS" "${PLY_SLAM_ROOT}/docs/RESULTS.md" "$COMMAND" <<'PY'
 import json, sys
 rows, results, command = sys.argv[1], sys.argv[2], sys.argv[3]
 lines = ["Command: `%s` (config/tum_fr1.yaml; walkers = fr1_rpy_150_349_walkers, static = its twin "
-         "rgbd_dataset_freiburg1_rpy_150_349). Walker features: keypoints on a ground-truth walker mask; "
+         "rgbd_dataset_freiburg1_rpy_150_349; bonn = rgbd_bonn_crowd_150_449 with config/bonn.yaml, "
+         "live = --live). Walker features: keypoints on a ground-truth walker mask; "
          "static: farther than 5 px from one. *Kept*: not dropped by the rejection; *used*: inlier of the "
          "pose optimisation. Dense ghosts: share of the dense map's points, and of the octree's occupied "
          "voxels, that mostly come from ground-truth walker pixels (section on issue #7)." % command, "",
