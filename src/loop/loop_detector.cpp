@@ -1,6 +1,7 @@
 #include "ply_slam/loop/loop_detector.h"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -32,6 +33,7 @@ void LoopDetector::addKeyFrame(LoopKeyFrame keyframe) {
   if (!keyframe.lbd_descriptors.empty())
     lbd_.transform(keyframe.lbd_descriptors, words.lines, words.line_features,
                    options_.direct_index_levels_up);
+  dropWeakLinks(keyframe.covisibility);
   Entry e;
   e.entropy = featureEntropy(words.points, words.lines);
   e.order = next_order_++;
@@ -45,7 +47,13 @@ void LoopDetector::setCovisibility(long id, std::map<long, int> covisibility) {
   auto it = keyframes_.find(id);
   if (it == keyframes_.end())
     throw std::out_of_range("LoopDetector: no keyframe " + std::to_string(id));
+  dropWeakLinks(covisibility);
   it->second.keyframe.covisibility = std::move(covisibility);
+}
+
+void LoopDetector::dropWeakLinks(std::map<long, int>& covisibility) const {
+  for (auto it = covisibility.begin(); it != covisibility.end();)
+    it = it->second < options_.min_covisible_shared ? covisibility.erase(it) : std::next(it);
 }
 
 const LoopDetector::Entry& LoopDetector::entry(long id) const {

@@ -94,6 +94,7 @@ void readSelectionKeys(LoopSection& s, LoopOptions& o) {
   s.read("instance_weight", o.instance_weight, 0.0, 1.0);
   s.read("min_normalised_score", o.min_normalised_score, 0.0, kHuge);
   s.read("consistency", o.consistency, 1, 1000);
+  s.read("min_covisible_shared", o.min_covisible_shared, 1, 1000000);
 }
 
 void readGeometricKeys(LoopSection& s, LoopOptions& o) {

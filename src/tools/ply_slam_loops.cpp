@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <set>
@@ -41,6 +42,10 @@ constexpr const char* kUsage =
     "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt; yolo: YOLOv8-seg\n"
     "    (model from the config's segmentation section or --model/--input)\n"
     "  --min-gap-s: true loops are keyframes more than this many seconds apart (default 10)\n"
+    "  --keep-long-links: keep the map's covisibility links between keyframes more than\n"
+    "    --min-gap-s apart (default: dropped, as if tracking had not reconnected them; a\n"
+    "    drift-free tracker in a small room links every keyframe to every other, and covisible\n"
+    "    keyframes are never loop candidates)\n"
     "  vocabularies: the config's loop.orb_vocabulary / loop.lbd_vocabulary (\"\": the defaults\n"
     "    scripts/setup.sh trains into build/vocabulary/)\n";
 
@@ -48,6 +53,7 @@ struct Options {
   std::string sequence, config, out, segmenter = "none", model;
   int input_width = 0, input_height = 0;
   long max_frames = -1;
+  bool keep_long_links = false;
   LoopGroundTruthParams truth;
 };
 
@@ -93,6 +99,10 @@ Options parse(int argc, char** argv) {
     if (arg == "-h" || arg == "--help") {
       std::cout << kUsage;
       std::exit(0);
+    }
+    if (arg == "--keep-long-links") {
+      o.keep_long_links = true;
+      continue;
     }
     if (arg.rfind("--", 0) != 0) usage("unknown option " + arg);
     if (i + 1 >= argc) usage("missing value after " + arg);
@@ -179,13 +189,15 @@ class KeyFrameCollector {
   std::vector<long> line_counts_, instance_counts_;
 };
 
-// Covisibility as the map has it at the end (later keyframes add links to earlier ones).
-void copyCovisibility(const Map& map, LoopDetector& detector) {
+// Covisibility as the map has it at the end (later keyframes add links to earlier ones), without
+// links between keyframes more than max_link_s apart.
+void copyCovisibility(const Map& map, double max_link_s, LoopDetector& detector) {
   for (const auto& keyframe : map.keyFrames()) {
     if (!keyframe) continue;
     std::map<long, int> covisibility;
     for (const auto& [other, shared] : keyframe->covisibility)
-      if (other) covisibility[other->id] = shared;
+      if (other && std::abs(other->stamp - keyframe->stamp) <= max_link_s)
+        covisibility[other->id] = shared;
     try {
       detector.setCovisibility(keyframe->id, std::move(covisibility));
     } catch (const std::out_of_range&) {
@@ -262,14 +274,37 @@ std::optional<Best> bestNormalised(const LoopQueryScores& s, double VariantScore
 struct AcceptedLoop {
   long query = 0, candidate = 0;
   int inliers_3d = 0, reprojection_inliers = 0;
-  bool correct = false;
+  bool correct = false;  // a true loop as defined (time, distance, angle, overlap)
+  // Ground truth of the pair: camera distance and angle, and how far the check's estimated
+  // motion is from the true one (what a loop correction would get wrong).
+  double gt_distance_m = 0.0, gt_angle_deg = 0.0, motion_error_m = 0.0, motion_error_deg = 0.0;
 };
+
+double angleDeg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
+
+AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& candidate,
+                          const GeometricCheckResult& check, const TruthTable& truth) {
+  AcceptedLoop a;
+  a.query = query.id;
+  a.candidate = candidate.id;
+  a.inliers_3d = check.inliers_3d;
+  a.reprojection_inliers = check.reprojection_inliers;
+  a.correct = truth.pairs.count({query.id, candidate.id}) > 0;
+  const Eigen::Isometry3d T_qc = query.T_wc.inverse() * candidate.T_wc;  // ground truth
+  a.gt_distance_m = T_qc.translation().norm();
+  a.gt_angle_deg = angleDeg(T_qc.linear());
+  const Eigen::Isometry3d error = T_qc.inverse() * check.T_query_candidate;
+  a.motion_error_m = error.translation().norm();
+  a.motion_error_deg = angleDeg(error.linear());
+  return a;
+}
 
 // What the detector did over the whole sequence.
 struct LoopRun {
   std::vector<ScoredDecision> decisions[kNumVariants];
   std::vector<AcceptedLoop> accepted;
   long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_false = 0;
+  long judged = 0, candidates = 0, covisible = 0;  // queries with a reference; sums over queries
   std::vector<double> score_ms, check_ms;
 };
 
@@ -279,19 +314,21 @@ struct LoopRun {
 LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& views,
                    const TruthTable& truth) {
   LoopRun run;
+  std::map<long, const GroundTruthView*> by_id;
+  for (const GroundTruthView& view : views) by_id[view.id] = &view;
   for (const GroundTruthView& view : views) {
     const LoopDetection d = detector.detect(view.id);
     run.score_ms.push_back(d.score_ms);
     run.check_ms.push_back(d.check_ms);
+    run.judged += d.scores.reference_id.has_value();
+    run.candidates += static_cast<long>(d.scores.candidates.size());
+    run.covisible += static_cast<long>(detector.keyFrame(view.id).covisibility.size());
     for (size_t v = 0; v < kNumVariants; ++v) {
       const std::optional<Best> best = bestNormalised(d.scores, kVariants[v].score);
       if (best)
         run.decisions[v].push_back({best->normalised, truth.pairs.count({view.id, best->id}) > 0});
     }
-    if (d.loop)
-      run.accepted.push_back({view.id, *d.loop, d.geometry->inliers_3d,
-                              d.geometry->reprojection_inliers,
-                              truth.pairs.count({view.id, *d.loop}) > 0});
+    if (d.loop) run.accepted.push_back(acceptedLoop(view, *by_id.at(*d.loop), *d.geometry, truth));
     const std::optional<Best> best = bestNormalised(d.scores, &VariantScores::full);
     if (!best) continue;
     ++run.geometry_checked;
@@ -337,7 +374,12 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
                   const TruthTable& truth, const LoopRun& run,
                   const std::vector<std::pair<std::string, PrCurve>>& curves, double alpha) {
   long correct = 0;
-  for (const AcceptedLoop& a : run.accepted) correct += a.correct;
+  double worst_m = 0.0, worst_deg = 0.0;
+  for (const AcceptedLoop& a : run.accepted) {
+    correct += a.correct;
+    worst_m = std::max(worst_m, a.motion_error_m);
+    worst_deg = std::max(worst_deg, a.motion_error_deg);
+  }
   std::ofstream j(out / "summary.json");
   j << "{\n  \"sequence\": \"" << o.sequence << "\",\n  \"config\": \"" << o.config
     << "\",\n  \"segmenter\": \"" << o.segmenter << "\",\n  \"frames\": " << info.frames
@@ -350,6 +392,10 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     << ", \"min_overlap\": " << o.truth.min_overlap
     << ", \"keyframes_with_ground_truth\": " << truth.views_with_pose
     << ", \"pairs\": " << truth.pairs.size() << ", \"queries\": " << truth.queries.size()
+    << "},\n  \"queries\": {\"judged\": " << run.judged << ", \"mean_candidates\": "
+    << jsonNumber(double(run.candidates) / std::max<long>(1, info.keyframes))
+    << ", \"mean_covisible\": "
+    << jsonNumber(double(run.covisible) / std::max<long>(1, info.keyframes))
     << "},\n  \"variants\": {";
   for (size_t v = 0; v < curves.size(); ++v) {
     const PrCurve& c = curves[v].second;
@@ -363,13 +409,18 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     << ", \"count\": " << run.accepted.size() << ", \"correct\": " << correct
     << ", \"false\": " << run.accepted.size() - correct << ", \"precision\": "
     << jsonNumber(run.accepted.empty() ? 1.0 : double(correct) / run.accepted.size())
-    << ", \"loops\": [";
+    << ", \"max_motion_error_m\": " << jsonNumber(worst_m)
+    << ", \"max_motion_error_deg\": " << jsonNumber(worst_deg) << ", \"loops\": [";
   for (size_t i = 0; i < run.accepted.size(); ++i) {
     const AcceptedLoop& a = run.accepted[i];
     j << (i ? ", " : "") << "{\"query\": " << a.query << ", \"candidate\": " << a.candidate
       << ", \"inliers_3d\": " << a.inliers_3d
       << ", \"reprojection_inliers\": " << a.reprojection_inliers
-      << ", \"true\": " << (a.correct ? "true" : "false") << "}";
+      << ", \"true\": " << (a.correct ? "true" : "false")
+      << ", \"gt_distance_m\": " << jsonNumber(a.gt_distance_m)
+      << ", \"gt_angle_deg\": " << jsonNumber(a.gt_angle_deg)
+      << ", \"motion_error_m\": " << jsonNumber(a.motion_error_m)
+      << ", \"motion_error_deg\": " << jsonNumber(a.motion_error_deg) << "}";
   }
   j << "]},\n  \"geometry_on_best_candidates\": {\"checked\": " << run.geometry_checked
     << ", \"passed_true\": " << run.geometry_passed_true
@@ -425,7 +476,9 @@ int run(const Options& o) {
   info.add_ms = collector.addMs();
   info.mean_lines = collector.meanLines();
   info.mean_instances = collector.meanInstances();
-  copyCovisibility(system.map(), detector);
+  copyCovisibility(system.map(),
+                   o.keep_long_links ? std::numeric_limits<double>::infinity() : o.truth.min_gap_s,
+                   detector);
   const TruthTable truth = trueLoops(collector.views(), sequence, config.camera, detector, o.truth);
   const LoopRun run = runQueries(detector, collector.views(), truth);
   std::vector<std::pair<std::string, PrCurve>> curves;

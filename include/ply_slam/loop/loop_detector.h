@@ -27,7 +27,9 @@ struct LoopKeyFrame {
   std::vector<float> depth;                // m per keypoint, 0 = none
   cv::Mat lbd_descriptors;                 // M x 32 CV_8U (may be empty: no lines)
   std::vector<InstanceBox> instances;      // the keyframe's segmented objects (any class)
-  std::map<long, int> covisibility;        // keyframe id -> landmarks shared with it
+  // Keyframe id -> landmarks shared with it; links below options.min_covisible_shared are
+  // dropped when the detector takes the keyframe.
+  std::map<long, int> covisibility;
 };
 
 // The scores of one (query, candidate) pair under each way of recognising a place that the
@@ -103,6 +105,7 @@ class LoopDetector {
   };
 
   const Entry& entry(long id) const;
+  void dropWeakLinks(std::map<long, int>& covisibility) const;
   VariantScores pairScores(const Entry& query, const Entry& other, double s_p, double s_l,
                            int* instance_matches) const;
   std::optional<long> bestEarlierCovisible(const Entry& query) const;

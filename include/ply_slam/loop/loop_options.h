@@ -48,6 +48,10 @@ struct LoopOptions {
   double instance_weight = 0.4;
 
   // --- Candidate selection ---------------------------------------------------------------
+  // Keyframes sharing at least this many landmarks are covisible: never loop candidates of
+  // each other, and the query's best of them is its reference. ORB-SLAM's 15: in a small room
+  // every keyframe shares a few points with every other, which says little.
+  int min_covisible_shared = 15;
   // alpha: minimum normalised score S_fin(query, cand) / S_fin(query, best covisible). The
   // paper sweeps 0.1..0.8; 0.3 is DBoW2's usual normalised-score threshold.
   double min_normalised_score = 0.3;
