@@ -60,6 +60,7 @@ class LoopDetectorTest : public ::testing::Test {
   LoopKeyFrame view(long id, int start, const Eigen::Vector3d& offset, std::mt19937& rng) const {
     LoopKeyFrame kf;
     kf.id = id;
+    kf.stamp = 2.0 * id;  // s: the second pass comes 28 s after the first
     const Eigen::Vector3d centre(0.01 * (start + kWindow / 2), 0.0, 0.0);
     kf.orb_descriptors = test::noisyCopy(points_.rowRange(start, start + kWindow), 4, rng);
     kf.lbd_descriptors = test::noisyCopy(lines_.rowRange(start / 5, (start + kWindow) / 5), 4, rng);
@@ -115,10 +116,17 @@ TEST_F(LoopDetectorTest, ScoresTheRevisitedWindowHighest) {
   EXPECT_GT(best->raw.full / s.reference.full, 1.0);
 }
 
-TEST_F(LoopDetectorTest, QueriesSeeOnlyEarlierKeyFrames) {
+TEST_F(LoopDetectorTest, QueriesSeeOnlyKeyFramesOldEnough) {
   const LoopDetector detector = filledDetector();
   // Keyframe 2 (window 200) shares landmarks with 16 (window 200) and 17 (300): both later.
   for (const ScoredCandidate& c : detector.score(2).candidates) EXPECT_LT(c.id, 2);
+  // Keyframe 12 (24 s): 7 (14 s) and older are candidates, 8 (16 s) to 10 are too recent.
+  for (const ScoredCandidate& c : detector.score(12).candidates) EXPECT_LE(c.id, 7);
+  LoopOptions no_age;
+  no_age.min_candidate_age_s = 0.0;
+  bool recent = false;
+  for (const ScoredCandidate& c : filledDetector(no_age).score(12).candidates) recent |= c.id == 10;
+  EXPECT_TRUE(recent);  // keyframe 10 is not covisible with 12 (windows 1000 and 1200)
   // Keyframe 15 has no earlier covisible keyframe: no reference, nothing can pass.
   EXPECT_FALSE(detector.score(15).reference_id.has_value());
 }
@@ -137,6 +145,22 @@ TEST_F(LoopDetectorTest, AcceptsTheLoopOnTheThirdConsistentQueryWithItsMotion) {
   EXPECT_LT((d.geometry->T_query_candidate.translation() + kOffset).norm(), 0.01);
   EXPECT_LT(Eigen::AngleAxisd(d.geometry->T_query_candidate.linear()).angle(), 0.01);
   EXPECT_GE(d.geometry->inliers_3d, 100);
+}
+
+TEST_F(LoopDetectorTest, OnlyLinksOfEnoughSharedLandmarksMakeKeyFramesCovisible) {
+  LoopDetector detector = filledDetector();
+  const auto offers = [&](long query, long candidate) {
+    for (const ScoredCandidate& c : detector.score(query).candidates)
+      if (c.id == candidate) return true;
+    return false;
+  };
+  ASSERT_TRUE(offers(17, 3));
+  const int weak = detector.options().min_covisible_shared - 1;
+  detector.setCovisibility(17, {{16, 100}, {3, weak}});
+  EXPECT_TRUE(offers(17, 3));
+  EXPECT_EQ(detector.keyFrame(17).covisibility.count(3), 0u);
+  detector.setCovisibility(17, {{16, 100}, {3, weak + 1}});
+  EXPECT_FALSE(offers(17, 3));
 }
 
 TEST_F(LoopDetectorTest, GeometricCheckRejectsAPlaceThatOnlyLooksAlike) {

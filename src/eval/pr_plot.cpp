@@ -35,11 +35,11 @@ void drawAxes(cv::Mat& image) {
 }
 
 // Steps as the detector moves: from (0, 1) through each threshold's (recall, precision).
-void drawCurve(cv::Mat& image, const PrCurve& curve, const cv::Scalar& colour) {
+void drawCurve(cv::Mat& image, const PrCurve& curve, const cv::Scalar& colour, int thickness) {
   cv::Point last = toPixel(0.0, 1.0);
   for (const PrPoint& p : curve.points) {
     const cv::Point next = toPixel(p.recall, p.precision);
-    cv::line(image, last, next, colour, 2, cv::LINE_AA);
+    cv::line(image, last, next, colour, thickness, cv::LINE_AA);
     last = next;
   }
 }
@@ -55,7 +55,8 @@ void writePrPlot(const std::string& png_path,
   const int n = static_cast<int>(sizeof(kColours) / sizeof(kColours[0]));
   for (size_t i = 0; i < curves.size(); ++i) {
     const cv::Scalar& colour = kColours[i % n];
-    drawCurve(image, curves[i].second, colour);
+    // Earlier curves wider: one that another covers exactly still shows as its border.
+    drawCurve(image, curves[i].second, colour, 2 + 2 * static_cast<int>(curves.size() - 1 - i));
     char legend[160];
     std::snprintf(legend, sizeof(legend), "%s  AUC %.3f  R@P1 %.2f", curves[i].first.c_str(),
                   curves[i].second.average_precision, curves[i].second.recall_at_full_precision);

@@ -95,6 +95,7 @@ void readSelectionKeys(LoopSection& s, LoopOptions& o) {
   s.read("min_normalised_score", o.min_normalised_score, 0.0, kHuge);
   s.read("consistency", o.consistency, 1, 1000);
   s.read("min_covisible_shared", o.min_covisible_shared, 1, 1000000);
+  s.read("min_candidate_age_s", o.min_candidate_age_s, 0.0, kHuge);
 }
 
 void readGeometricKeys(LoopSection& s, LoopOptions& o) {

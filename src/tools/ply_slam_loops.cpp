@@ -41,7 +41,8 @@ constexpr const char* kUsage =
     "                      [--model ONNX --input WxH] [--max-frames N] [--min-gap-s S]\n"
     "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt; yolo: YOLOv8-seg\n"
     "    (model from the config's segmentation section or --model/--input)\n"
-    "  --min-gap-s: true loops are keyframes more than this many seconds apart (default 10)\n"
+    "  --min-gap-s: true loops are keyframes more than this many seconds apart (default 10);\n"
+    "    the detector's loop.min_candidate_age_s is set to it\n"
     "  --keep-long-links: keep the map's covisibility links between keyframes more than\n"
     "    --min-gap-s apart (default: dropped, as if tracking had not reconnected them; a\n"
     "    drift-free tracker in a small room links every keyframe to every other, and covisible\n"
@@ -150,6 +151,7 @@ class KeyFrameCollector {
     Stopwatch watch;
     LoopKeyFrame kf;
     kf.id = packet.id;
+    kf.stamp = packet.stamp;
     kf.orb_descriptors = packet.descriptors;
     kf.keypoints = packet.keypoints;
     kf.depth = packet.keypoint_depth;
@@ -434,14 +436,17 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
   if (!j) throw std::runtime_error((out / "summary.json").string() + ": cannot write");
 }
 
-LoopDetector makeDetector(const SystemConfig& config, RunInfo& info) {
+LoopDetector makeDetector(const SystemConfig& config, double min_gap_s, RunInfo& info) {
   Stopwatch watch;
   BinaryVocabulary orb = BinaryVocabulary::load(
       vocabularyPath(config.loop.orb_vocabulary, DescriptorKind::kOrb), DescriptorKind::kOrb);
   BinaryVocabulary lbd = BinaryVocabulary::load(
       vocabularyPath(config.loop.lbd_vocabulary, DescriptorKind::kLbd), DescriptorKind::kLbd);
   info.vocabulary_load_ms = watch.elapsedMs();
-  return LoopDetector(std::move(orb), std::move(lbd), config.camera, config.loop);
+  // Candidates as old as true loops must be: none is left out that could be one.
+  LoopOptions options = config.loop;
+  options.min_candidate_age_s = min_gap_s;
+  return LoopDetector(std::move(orb), std::move(lbd), config.camera, options);
 }
 
 // Tracks every frame; each new keyframe goes to the collector.
@@ -468,7 +473,7 @@ int run(const Options& o) {
     throw std::runtime_error(o.sequence + ": no groundtruth.txt, true loops cannot be defined");
   fs::create_directories(o.out);
   RunInfo info;
-  LoopDetector detector = makeDetector(config, info);
+  LoopDetector detector = makeDetector(config, o.truth.min_gap_s, info);
   KeyFrameCollector collector(config, detector);
   System system(config);
   track(o, config, sequence, collector, system, info);

@@ -22,6 +22,7 @@ namespace ply_slam {
 // What loop detection keeps of one keyframe.
 struct LoopKeyFrame {
   long id = 0;
+  double stamp = 0.0;                      // s
   cv::Mat orb_descriptors;                 // N x 32 CV_8U
   std::vector<Eigen::Vector2d> keypoints;  // undistorted pixels, one per ORB row
   std::vector<float> depth;                // m per keypoint, 0 = none
@@ -54,7 +55,9 @@ struct LoopQueryScores {
   long query_id = 0;
   std::optional<long> reference_id;  // none: no covisible keyframe, the query cannot be judged
   VariantScores reference;
-  std::vector<ScoredCandidate> candidates;  // earlier, not covisible keyframes sharing a word
+  // Keyframes sharing a word with the query, added before it, at least
+  // options.min_candidate_age_s older and not covisible with it.
+  std::vector<ScoredCandidate> candidates;
 };
 
 // What one detect() found.
@@ -85,7 +88,7 @@ class LoopDetector {
   // Throws std::out_of_range for an id never added.
   const LoopKeyFrame& keyFrame(long id) const { return entry(id).keyframe; }
 
-  // Raw scores of the query against the earlier, non-covisible keyframes.
+  // Raw scores of the query against the earlier, old enough, non-covisible keyframes.
   LoopQueryScores score(long query_id) const;
   // score(), then alpha, the consistency over consecutive queries (call in keyframe order) and
   // the geometric check of the consistent candidates, best first, until one passes.
