@@ -11,6 +11,7 @@
 #include "loop_test_data.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
+#include "ply_slam/loop/dynamic_class_mask.h"
 #include "ply_slam/loop/loop_detector.h"
 
 namespace ply_slam {
@@ -214,6 +215,24 @@ TEST(DefaultVocabularies, LoadAndTellImagesApart) {
   };
   const BowVector wa = words(a);
   EXPECT_GT(bowScore(wa, words(shifted)), 2.0 * bowScore(wa, words(b)));
+}
+
+TEST(DynamicClassMask, CoversMoversDilatedAndNothingElse) {
+  Instance person{1, "person", 1.0f, cv::Mat::zeros(40, 60, CV_8UC1)};
+  person.mask(cv::Rect(10, 10, 5, 5)).setTo(1);
+  Instance chair{2, "chair", 1.0f, cv::Mat::zeros(40, 60, CV_8UC1)};
+  chair.mask(cv::Rect(40, 20, 5, 5)).setTo(1);
+  const cv::Mat mask = dynamicClassMask({person, chair}, LoopOptions().dynamic_classes, 2);
+  EXPECT_TRUE(onMask(mask, {12, 12}));
+  EXPECT_TRUE(onMask(mask, {8.2, 12}));   // within the 2 px dilation
+  EXPECT_FALSE(onMask(mask, {6.0, 12}));  // beyond it
+  EXPECT_FALSE(onMask(mask, {42, 22}));   // a chair does not move by itself
+  EXPECT_FALSE(onMask(mask, {-1, 500}));  // outside the image
+  EXPECT_TRUE(dynamicClassMask({chair}, LoopOptions().dynamic_classes, 2).empty());
+  const cv::Mat rows = (cv::Mat_<uint8_t>(3, 2) << 1, 2, 3, 4, 5, 6);
+  const cv::Mat kept = keptRows(rows, {true, false, true});
+  ASSERT_EQ(kept.rows, 2);
+  EXPECT_EQ(kept.at<uint8_t>(1, 0), 5);
 }
 
 TEST(VocabularyPath, EmptyMeansTheDefaultAndRelativeMeansThePackage) {

@@ -8,6 +8,7 @@
 
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/loop/direct_index_matcher.h"
+#include "ply_slam/loop/vocabulary_path.h"
 
 namespace ply_slam {
 
@@ -20,6 +21,15 @@ LoopDetector::LoopDetector(BinaryVocabulary orb, BinaryVocabulary lbd, const Pin
       database_(orb_.numWords(), lbd_.numWords()),
       selector_(options) {
   if (orb_.empty() || lbd_.empty()) throw std::invalid_argument("LoopDetector: empty vocabulary");
+}
+
+LoopDetector LoopDetector::fromOptions(const PinholeCamera& camera, const LoopOptions& options) {
+  return LoopDetector(
+      BinaryVocabulary::load(vocabularyPath(options.orb_vocabulary, DescriptorKind::kOrb),
+                             DescriptorKind::kOrb),
+      BinaryVocabulary::load(vocabularyPath(options.lbd_vocabulary, DescriptorKind::kLbd),
+                             DescriptorKind::kLbd),
+      camera, options);
 }
 
 void LoopDetector::addKeyFrame(LoopKeyFrame keyframe) {
@@ -150,6 +160,19 @@ LoopDetection LoopDetector::detect(long query_id) {
   }
   d.check_ms = watch.elapsedMs();
   return d;
+}
+
+std::vector<long> LoopDetector::recognise(const cv::Mat& orb_descriptors,
+                                          size_t max_results) const {
+  std::vector<BowCandidate> found =
+      database_.query(orb_.transform(orb_descriptors), BowVector{}, 0);
+  // The database ranks by S_p + S_l; an image without lines is ranked by its points alone.
+  std::stable_sort(found.begin(), found.end(), [](const BowCandidate& a, const BowCandidate& b) {
+    return a.point_score > b.point_score;
+  });
+  std::vector<long> ids;
+  for (size_t i = 0; i < found.size() && i < max_results; ++i) ids.push_back(found[i].keyframe_id);
+  return ids;
 }
 
 std::vector<PutativeMatch> LoopDetector::putativeMatches(const Entry& query,

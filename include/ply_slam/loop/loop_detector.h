@@ -79,6 +79,10 @@ class LoopDetector {
   LoopDetector(BinaryVocabulary orb, BinaryVocabulary lbd, const PinholeCamera& camera,
                const LoopOptions& options);
 
+  // Loads the vocabularies the options name (vocabularyPath: "" = the defaults); throws
+  // std::runtime_error naming a missing or bad file.
+  static LoopDetector fromOptions(const PinholeCamera& camera, const LoopOptions& options);
+
   // Adds (or replaces) a keyframe. Throws std::invalid_argument when the keypoints or depths do
   // not match the ORB rows.
   void addKeyFrame(LoopKeyFrame keyframe);
@@ -93,6 +97,9 @@ class LoopDetector {
   // score(), then alpha, the consistency over consecutive queries (call in keyframe order) and
   // the geometric check of the consistent candidates, best first, until one passes.
   LoopDetection detect(long query_id);
+  // Relocalisation: the keyframes whose ORB words an image's descriptors share, most similar
+  // (S_p) first, at most max_results; no keyframe is excluded.
+  std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
   // The geometric check of one pair (direct-index ORB matches with depth in both).
   GeometricCheckResult verify(long query_id, long candidate_id) const;
 
