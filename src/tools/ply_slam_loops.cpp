@@ -17,6 +17,7 @@
 #include <set>
 #include <sstream>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
@@ -95,20 +96,17 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kUsage;
-      std::exit(0);
-    }
-    if (arg == "--keep-long-links") {
-      o.keep_long_links = true;
-      continue;
-    }
-    if (arg.rfind("--", 0) != 0) usage("unknown option " + arg);
-    if (i + 1 >= argc) usage("missing value after " + arg);
-    setOption(o, arg, argv[++i]);
-  }
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.flags = {"--keep-long-links"};
+  line.options = {"--sequence", "--config", "--out",        "--segmenter",
+                  "--model",    "--input",  "--max-frames", "--min-gap-s"};
+  line.on_flag = [&](const std::string&) { o.keep_long_links = true; };
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    setOption(o, arg, value);
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
   if (o.sequence.empty() || o.config.empty() || o.out.empty())
     usage("--sequence, --config and --out are required");
   return o;
