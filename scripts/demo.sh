@@ -18,6 +18,7 @@ fi
 ply_slam_install_packages
 echo "[demo] building (log: ${PLY_SLAM_WS}/build.log)"
 ply_slam_build
+ply_slam_vocabularies
 SECONDS=0
 
 if [ -z "$sequence" ]; then

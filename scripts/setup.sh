@@ -56,6 +56,32 @@ ply_slam_build() {
   }
 }
 
+# The default place-recognition vocabularies (loop.orb_vocabulary / loop.lbd_vocabulary ""):
+# build/vocabulary/{orb,lbd}_k10_l5.voc, trained by ply_slam_vocabulary from the opencv-doc
+# example images, which are in no evaluation sequence (k 10, 5 levels, seed 1; ~18 s on two
+# cores). Retrained when missing or older than the tool, so a changed extractor or trainer
+# never leaves a stale vocabulary behind.
+PLY_SLAM_VOCABULARY_IMAGES="${PLY_SLAM_VOCABULARY_IMAGES:-/usr/share/doc/opencv-doc/examples/data}"
+
+ply_slam_vocabularies() {
+  local tool="${PLY_SLAM_BIN}/ply_slam_vocabulary" dir="${PLY_SLAM_ROOT}/build/vocabulary"
+  mkdir -p "$dir"
+  local kind out
+  for kind in orb lbd; do
+    out="${dir}/${kind}_k10_l5.voc"
+    [ -f "$out" ] && [ "$out" -nt "$tool" ] && continue
+    echo "[setup] training the ${kind} vocabulary (log: ${dir}/${kind}_k10_l5.log)"
+    # Written beside and moved into place: an interrupted run leaves no truncated file.
+    "$tool" --images "$PLY_SLAM_VOCABULARY_IMAGES" --kind "$kind" --k 10 --levels 5 --seed 1 \
+      --out "${out}.part" >"${dir}/${kind}_k10_l5.log" 2>&1 || {
+      tail -n 20 "${dir}/${kind}_k10_l5.log"
+      echo "[setup] training the ${kind} vocabulary failed" >&2
+      return 1
+    }
+    mv -f "${out}.part" "$out"
+  done
+}
+
 # The shared data and models live beside the repository (never inside it).
 PLY_SLAM_SHARED="${PLY_SLAM_SHARED:-$(cd "${PLY_SLAM_ROOT}/.." && pwd)/shared}"
 export PLY_SLAM_SHARED

@@ -8,6 +8,7 @@ ply_slam_install_packages
 rm -rf "${PLY_SLAM_WS}/build" "${PLY_SLAM_WS}/devel"
 echo "[test] building (log: ${PLY_SLAM_WS}/build.log)"
 ply_slam_build
+ply_slam_vocabularies
 echo "[test] building and running tests"
 ply_slam_build tests
 cd "${PLY_SLAM_WS}/build"

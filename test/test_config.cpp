@@ -334,6 +334,39 @@ TEST_F(ConfigFileTest, LinesSurfaceBand) {
                     {"lines.surface_band_px"});
 }
 
+// The loop section (issue #16): read through the loop module's reader, errors name the file;
+// the depth noise comes from the camera; "" vocabulary paths mean the trained defaults.
+TEST_F(ConfigFileTest, LoopSection) {
+  const std::string base = kValidYaml;
+  const SystemConfig config =
+      loadConfig(write("loop.yaml", base + "loop:\n  enabled: true\n  orb_vocabulary: voc/o.voc\n"
+                                           "  min_normalised_score: 0.45\n  match_ratio: 0.7\n"));
+  EXPECT_TRUE(config.loop.enabled);
+  EXPECT_EQ(config.loop.orb_vocabulary, "voc/o.voc");
+  EXPECT_EQ(config.loop.lbd_vocabulary, "");
+  EXPECT_DOUBLE_EQ(config.loop.min_normalised_score, 0.45);
+  EXPECT_DOUBLE_EQ(config.loop.match_ratio, 0.7);
+  EXPECT_DOUBLE_EQ(config.loop.depth_noise.alpha, 6.25e-6);  // the template camera's
+  EXPECT_FALSE(loadConfig(write("none.yaml", base)).loop.enabled);
+  expectConfigError(write("key.yaml", base + "loop:\n  alpha: 0.3\n"),
+                    {"loop.alpha", "not a known key"});
+  expectConfigError(write("type.yaml", base + "loop:\n  enabled: maybe\n"),
+                    {"loop.enabled", "wrong type"});
+  expectConfigError(write("range.yaml", base + "loop:\n  match_ratio: 1.5\n"),
+                    {"loop.match_ratio"});
+  expectConfigError(write("map.yaml", base + "loop: 3\n"), {"loop"});
+}
+
+TEST(ShippedConfig, LoopSectionUsesTheDefaultVocabularies) {
+  for (const char* file : {"tum_fr1.yaml", "tum_fr2.yaml", "tum_fr3.yaml", "d435i.yaml"}) {
+    const SystemConfig config = loadConfig(kConfigDir + file);
+    EXPECT_FALSE(config.loop.enabled) << file;
+    EXPECT_EQ(config.loop.orb_vocabulary, "") << file;
+    EXPECT_EQ(config.loop.lbd_vocabulary, "") << file;
+    EXPECT_EQ(config.loop.consistency, 3) << file;
+  }
+}
+
 }  // namespace
 }  // namespace ply_slam
 

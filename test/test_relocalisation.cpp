@@ -2,19 +2,22 @@
 // at the right place (checked against ground truth).
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
+#include "default_vocabularies.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
+#include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/tracking/tracker.h"
 #include "shared_data.h"
 
 namespace ply_slam {
 namespace {
 
-TEST(Relocalisation, RecoversAfterBlankFrames) {
-  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
-  PLY_SLAM_REQUIRE_SHARED(folder);
-  const SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+// Tracks fr1_xyz_37 with the lens covered for frames 10..14.
+void expectRecoveryAfterBlankFrames(const std::string& folder, const SystemConfig& config) {
   const TumSequence sequence(folder);
   ASSERT_GE(sequence.size(), 30u);
   System system(config);
@@ -42,6 +45,61 @@ TEST(Relocalisation, RecoversAfterBlankFrames) {
   EXPECT_EQ(system.cameraTrajectory().size(), sequence.size() - 5);
   const AteResult ate = computeAte(sequence.groundTruth(), system.cameraTrajectory());
   EXPECT_LT(ate.translation.rmse, 0.01);
+}
+
+SystemConfig fr1Config() {
+  return loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+}
+
+TEST(Relocalisation, RecoversAfterBlankFrames) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  expectRecoveryAfterBlankFrames(folder, fr1Config());
+}
+
+// With loop.enabled the keyframes to try come from the place-recognition database.
+TEST(Relocalisation, RecoversThroughThePlaceDatabase) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  PLY_SLAM_REQUIRE_VOCABULARY(defaultVocabularyPath(DescriptorKind::kOrb));
+  PLY_SLAM_REQUIRE_VOCABULARY(defaultVocabularyPath(DescriptorKind::kLbd));
+  SystemConfig config = fr1Config();
+  config.loop.enabled = true;
+  expectRecoveryAfterBlankFrames(folder, config);
+}
+
+// A database that offers no keyframe: relocalisation has nothing to try and stays lost, so the
+// tracker really relocalises through the database's candidates and not around them.
+TEST(Relocalisation, TriesOnlyTheDatabasesCandidates) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  const SystemConfig config = fr1Config();
+  const TumSequence sequence(folder);
+  Map map;
+  OrbExtractor extractor(config.orb);
+  Tracker tracker(config, map, extractor.scales());
+  long offered = 0;
+  tracker.setPlaceCandidates([&](const Frame&) {
+    ++offered;
+    return std::vector<long>{};
+  });
+  const auto frame = [&](size_t i, bool blank) {
+    RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    if (blank) images.rgb.setTo(cv::Scalar(0, 0, 0));
+    cv::Mat gray;
+    cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+    return Frame(static_cast<long>(i), images.stamp,
+                 FrameFeatures::extract(gray, images.depth, config.camera, extractor));
+  };
+  for (size_t i = 0; i < 5; ++i) {
+    Frame f = frame(i, false);
+    ASSERT_EQ(tracker.track(f).state, TrackingState::kOk) << "frame " << i;
+  }
+  Frame blank = frame(5, true);
+  EXPECT_EQ(tracker.track(blank).state, TrackingState::kLost);
+  Frame back = frame(6, false);
+  EXPECT_EQ(tracker.track(back).state, TrackingState::kLost);
+  EXPECT_GE(offered, 1);
 }
 
 }  // namespace

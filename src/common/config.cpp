@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include "ply_slam/loop/loop_options_yaml.h"
+
 namespace ply_slam {
 namespace {
 
@@ -264,6 +266,17 @@ void readDense(Section s, DenseParams& d) {
   s.rejectUnknownKeys();
 }
 
+// The loop: section has its own reader (module loop); its errors name the key, this adds the
+// file.
+LoopOptions readLoop(Section& top, const YAML::Node& node, const std::string& path) {
+  top.child("loop");  // marks the key as known
+  try {
+    return loopOptionsFromYaml(node);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError("config " + path + ": " + e.what());
+  }
+}
+
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
@@ -279,6 +292,8 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   readTracking(top.child("tracking"), config.tracking);
   readDynamic(top.child("dynamic"), config.dynamic);
   readDense(top.child("dense"), config.dense);
+  config.loop = readLoop(top, root["loop"], path);
+  config.loop.depth_noise = config.camera.depth_noise;
   top.rejectUnknownKeys();
   return config;
 }

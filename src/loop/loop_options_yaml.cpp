@@ -29,6 +29,18 @@ class LoopSection {
     }
   }
 
+  // A flag or a text: any value of the type.
+  template <typename T>
+  void readValue(const std::string& key, T& value) {
+    used_.insert(key);
+    if (!present() || !node_[key]) return;
+    try {
+      value = node_[key].as<T>();
+    } catch (const YAML::Exception&) {
+      fail(key, "has the wrong type");
+    }
+  }
+
   void readList(const std::string& key, std::vector<std::string>& value) {
     used_.insert(key);
     if (!present() || !node_[key]) return;
@@ -57,6 +69,12 @@ class LoopSection {
 
 constexpr double kHuge = 1e12;
 
+void readGeneralKeys(LoopSection& s, LoopOptions& o) {
+  s.readValue("enabled", o.enabled);
+  s.readValue("orb_vocabulary", o.orb_vocabulary);
+  s.readValue("lbd_vocabulary", o.lbd_vocabulary);
+}
+
 void readInstanceKeys(LoopSection& s, LoopOptions& o) {
   s.read("position_weight", o.position_weight, 0.0, 1.0);
   s.read("iou_weight", o.iou_weight, 0.0, 1.0);
@@ -76,9 +94,14 @@ void readSelectionKeys(LoopSection& s, LoopOptions& o) {
   s.read("instance_weight", o.instance_weight, 0.0, 1.0);
   s.read("min_normalised_score", o.min_normalised_score, 0.0, kHuge);
   s.read("consistency", o.consistency, 1, 1000);
+  s.read("min_covisible_shared", o.min_covisible_shared, 1, 1000000);
+  s.read("min_candidate_age_s", o.min_candidate_age_s, 0.0, kHuge);
 }
 
 void readGeometricKeys(LoopSection& s, LoopOptions& o) {
+  s.read("direct_index_levels_up", o.direct_index_levels_up, 0, 20);
+  s.read("match_max_distance", o.match_max_distance, 0, 256);
+  s.read("match_ratio", o.match_ratio, 0.0, 1.0);
   s.read("ransac_iterations", o.ransac_iterations, 1, 1000000);
   s.read("ransac_seed", o.ransac_seed, 0u, ~0u);
   s.read("refine_iterations", o.refine_iterations, 0, 1000);
@@ -94,6 +117,7 @@ void readGeometricKeys(LoopSection& s, LoopOptions& o) {
 LoopOptions loopOptionsFromYaml(const YAML::Node& loop_section) {
   LoopOptions options;
   LoopSection section(loop_section);
+  readGeneralKeys(section, options);
   readInstanceKeys(section, options);
   readSelectionKeys(section, options);
   readGeometricKeys(section, options);

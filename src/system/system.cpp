@@ -9,6 +9,23 @@
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
+namespace {
+
+// Keyframes relocalisation tries, most similar first (ORB-SLAM tries those of its BoW query).
+constexpr size_t kRelocalisationCandidates = 10;
+
+LoopKeyFrame placeKeyFrame(const KeyFrame& kf) {
+  LoopKeyFrame place;
+  place.id = kf.id;
+  place.stamp = kf.stamp;
+  place.orb_descriptors = kf.features.descriptors;
+  place.keypoints = kf.features.undistorted;
+  place.depth = kf.features.depth;
+  return place;
+}
+
+}  // namespace
+
 System::System(const SystemConfig& config)
     : config_(config),
       extractor_(config.orb),
@@ -19,6 +36,13 @@ System::System(const SystemConfig& config)
   if (config_.lines.enabled) {
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
+  }
+  if (config_.loop.enabled) {
+    places_ =
+        std::make_unique<LoopDetector>(LoopDetector::fromOptions(config_.camera, config_.loop));
+    tracker_.setPlaceCandidates([this](const Frame& frame) {
+      return places_->recognise(frame.features.descriptors, kRelocalisationCandidates);
+    });
   }
 }
 
@@ -106,6 +130,7 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   if (result.tracking.new_keyframe) {
     Stopwatch mapping;
     mapper_.insertKeyFrame(result.tracking.new_keyframe);
+    if (places_) places_->addKeyFrame(placeKeyFrame(*result.tracking.new_keyframe));
     result.timing.mapping_ms = mapping.elapsedMs();
     result.keyframe_packet = std::make_shared<const KeyFramePacket>(
         makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, judged,

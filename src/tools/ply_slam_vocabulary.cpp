@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
@@ -97,20 +98,19 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kUsage;
-      std::exit(0);
-    }
-    if (arg == "--benchmark") {
-      o.benchmark = true;
-      continue;
-    }
-    if (arg.rfind("--", 0) != 0) usage("unknown option " + arg);
-    if (i + 1 >= argc) usage("missing value after " + arg);
-    setOption(o, arg, argv[++i]);
-  }
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.flags = {"--benchmark"};
+  line.options = {
+      "--images",         "--kind",         "--out",  "--config",     "--k",
+      "--levels",         "--max-features", "--seed", "--video-step", "--orb-vocabulary",
+      "--lbd-vocabulary", "--keyframes"};
+  line.on_flag = [&](const std::string&) { o.benchmark = true; };
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    setOption(o, arg, value);
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
   if (o.images.empty()) usage("--images is required");
   if (o.benchmark && (o.orb_vocabulary.empty() || o.lbd_vocabulary.empty()))
     usage("--benchmark needs --orb-vocabulary and --lbd-vocabulary");

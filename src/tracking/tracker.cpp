@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/core/hal/hal.hpp>
@@ -213,12 +214,28 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
   return optimizePose(frame) >= kMinPnpMatches;
 }
 
-bool Tracker::relocalise(Frame& frame) {
-  // Newest keyframes first: after a short loss the camera is usually still near them.
+std::vector<std::shared_ptr<KeyFrame>> Tracker::relocalisationOrder(const Frame& frame) const {
   auto keyframes = map_.keyFrames();
-  for (auto it = keyframes.rbegin(); it != keyframes.rend(); ++it) {
-    if (trackWithPnp(frame, (*it)->map_points)) {
-      last_keyframe_ = *it;
+  if (!place_candidates_) {
+    // Newest keyframes first: after a short loss the camera is usually still near them.
+    std::reverse(keyframes.begin(), keyframes.end());
+    return keyframes;
+  }
+  std::map<long, std::shared_ptr<KeyFrame>> by_id;
+  for (const auto& kf : keyframes)
+    if (kf) by_id[kf->id] = kf;
+  std::vector<std::shared_ptr<KeyFrame>> order;
+  for (long id : place_candidates_(frame)) {
+    auto it = by_id.find(id);
+    if (it != by_id.end()) order.push_back(it->second);  // culled keyframes are skipped
+  }
+  return order;
+}
+
+bool Tracker::relocalise(Frame& frame) {
+  for (const auto& kf : relocalisationOrder(frame)) {
+    if (kf && trackWithPnp(frame, kf->map_points)) {
+      last_keyframe_ = kf;
       return true;
     }
   }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/loop/loop_options.h"
 
 namespace ply_slam {
 
@@ -162,6 +163,7 @@ struct SystemConfig {
   YoloParams segmentation;
   DynamicParams dynamic;
   DenseParams dense;
+  LoopOptions loop;  // place recognition (loop module); its depth noise is the camera's
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and

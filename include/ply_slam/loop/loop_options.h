@@ -10,6 +10,15 @@ namespace ply_slam {
 // Every threshold of loop detection (PAPER.md §3.3). Values the paper states are marked
 // "paper"; the others are our choices (the paper gives none) and say why.
 struct LoopOptions {
+  // --- Place recognition as a whole ------------------------------------------------------
+  // false: the SLAM system runs no loop detection (tools such as ply_slam_loops still can).
+  bool enabled = false;
+  // Vocabulary files (ply_slam_vocabulary). "" = the default that scripts/setup.sh trains,
+  // build/vocabulary/{orb,lbd}_k10_l5.voc; a relative path is taken from the package source
+  // folder (vocabularyPath()).
+  std::string orb_vocabulary;
+  std::string lbd_vocabulary;
+
   // --- Instance similarity ---------------------------------------------------------------
   // paper: S_inst = w_pos S_pos + w_iou S_IoU.
   double position_weight = 0.6;
@@ -39,6 +48,15 @@ struct LoopOptions {
   double instance_weight = 0.4;
 
   // --- Candidate selection ---------------------------------------------------------------
+  // Keyframes sharing at least this many landmarks are covisible: never loop candidates of
+  // each other, and the query's best of them is its reference. ORB-SLAM's 15: in a small room
+  // every keyframe shares a few points with every other, which says little.
+  int min_covisible_shared = 15;
+  // Candidates must be at least this much older than the query (s). A return to a place after a
+  // while is a loop; a keyframe of the last seconds that tracking failed to connect is the
+  // local map's and relocalisation's business, and closing a "loop" to it corrects no drift.
+  // Issue #16 defines true loops as more than 10 s apart.
+  double min_candidate_age_s = 10.0;
   // alpha: minimum normalised score S_fin(query, cand) / S_fin(query, best covisible). The
   // paper sweeps 0.1..0.8; 0.3 is DBoW2's usual normalised-score threshold.
   double min_normalised_score = 0.3;
@@ -47,6 +65,12 @@ struct LoopOptions {
   int consistency = 3;
 
   // --- Geometric check -------------------------------------------------------------------
+  // Matches come through the direct index: only descriptors under one vocabulary node this
+  // many levels above the words are compared. With k 10, L 5: 3 up = level 2, 100 nodes, as
+  // ORB-SLAM compares at its vocabulary's level 2 (of 6) too.
+  int direct_index_levels_up = 3;
+  int match_max_distance = 50;        // Hamming (of 256 bits), ORB-SLAM's TH_LOW
+  double match_ratio = 0.75;          // best / second best, ORB-SLAM's loop-search ratio
   int ransac_iterations = 200;        // 3-point hypotheses; 40 % inliers need ~70 for 99.9 %
   unsigned ransac_seed = 42;          // fixed: the same input gives the same answer
   int refine_iterations = 5;          // re-fit on the inliers until the set stops changing

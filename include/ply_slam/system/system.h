@@ -11,6 +11,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/mapper.h"
@@ -94,6 +95,9 @@ class System {
   Map map_;
   Tracker tracker_;
   Mapper mapper_;
+  // With loop.enabled: every keyframe's ORB words, so that relocalisation tries the keyframes
+  // that look like the lost frame instead of all of them.
+  std::unique_ptr<LoopDetector> places_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   Trajectory camera_trajectory_;

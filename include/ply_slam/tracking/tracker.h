@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,7 +33,12 @@ class Tracker {
  public:
   Tracker(const SystemConfig& config, Map& map, const std::vector<double>& scales);
 
+  // Keyframe ids to relocalise against, most promising first (a place-recognition database).
+  using PlaceCandidates = std::function<std::vector<long>(const Frame&)>;
+
   TrackingResult track(Frame& frame);
+  // Once set, relocalisation tries only these keyframes; unset, every keyframe newest first.
+  void setPlaceCandidates(PlaceCandidates candidates) { place_candidates_ = std::move(candidates); }
   TrackingState state() const { return state_; }
   // The camera's current velocity, null when unknown (start, after a loss).
   const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
@@ -44,6 +50,7 @@ class Tracker {
   bool trackWithMotionModel(Frame& frame);
   bool trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates);
   bool relocalise(Frame& frame);
+  std::vector<std::shared_ptr<KeyFrame>> relocalisationOrder(const Frame& frame) const;
   int trackLocalMap(Frame& frame);
   void updateLocalMap(const Frame& frame);
   int optimizePose(Frame& frame);
@@ -76,6 +83,7 @@ class Tracker {
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
+  PlaceCandidates place_candidates_;
 };
 
 }  // namespace ply_slam

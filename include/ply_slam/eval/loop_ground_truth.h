@@ -1,0 +1,44 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "ply_slam/common/pinhole_camera.h"
+
+namespace ply_slam {
+
+// When two keyframes are a true loop (issue #16): taken more than min_gap_s apart, their
+// ground-truth camera centres within max_distance_m and their orientations within
+// max_angle_deg, and their views overlap: at least min_overlap of one keyframe's sampled depth
+// points (every pixel_step-th pixel in both directions, valid depth) land inside the other's
+// image, in front of it, where the other's depth agrees within max(depth_tolerance_m,
+// depth_tolerance_ratio z) (so points hidden behind a wall or out of view do not count).
+struct LoopGroundTruthParams {
+  double min_gap_s = 10.0;
+  double max_distance_m = 0.3;
+  double max_angle_deg = 20.0;
+  double min_overlap = 0.3;
+  int pixel_step = 4;  // of the (already downsampled) depth images
+  double depth_tolerance_m = 0.05;
+  double depth_tolerance_ratio = 0.05;
+};
+
+// A keyframe as the ground truth sees it.
+struct GroundTruthView {
+  long id = 0;
+  double stamp = 0.0;
+  Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();  // ground truth
+  cv::Mat depth;  // 32FC1 m, 0 = none; any size: `camera` must describe it
+};
+
+// The share of a's sampled valid depth points that b sees at the same depth (0 when a has
+// none).
+double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
+                   const LoopGroundTruthParams& params);
+
+// Both poses and times pass, and the larger of the two overlaps reaches min_overlap.
+bool isTrueLoop(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
+                const LoopGroundTruthParams& params);
+
+}  // namespace ply_slam

@@ -1,0 +1,40 @@
+#include "ply_slam/eval/loop_ground_truth.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ply_slam {
+
+double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
+                   const LoopGroundTruthParams& params) {
+  const Eigen::Isometry3d T_ba = b.T_wc.inverse() * a.T_wc;
+  long valid = 0, seen = 0;
+  for (int v = 0; v < a.depth.rows; v += params.pixel_step)
+    for (int u = 0; u < a.depth.cols; u += params.pixel_step) {
+      const float z = a.depth.at<float>(v, u);
+      if (!(z > 0.f)) continue;
+      ++valid;
+      const Eigen::Vector3d p_b = T_ba * camera.backProject(Eigen::Vector2d(u, v), z);
+      if (p_b.z() <= 0.0) continue;
+      const Eigen::Vector2d uv = camera.project(p_b);
+      if (!camera.inImage(uv)) continue;
+      const float z_b = b.depth.at<float>(static_cast<int>(uv.y()), static_cast<int>(uv.x()));
+      const double tolerance =
+          std::max(params.depth_tolerance_m, params.depth_tolerance_ratio * p_b.z());
+      seen += z_b > 0.f && std::abs(z_b - p_b.z()) < tolerance;
+    }
+  return valid > 0 ? static_cast<double>(seen) / valid : 0.0;
+}
+
+bool isTrueLoop(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
+                const LoopGroundTruthParams& params) {
+  if (std::abs(a.stamp - b.stamp) <= params.min_gap_s) return false;
+  const Eigen::Isometry3d T_ab = a.T_wc.inverse() * b.T_wc;
+  if (T_ab.translation().norm() > params.max_distance_m) return false;
+  const double angle_deg = Eigen::AngleAxisd(T_ab.linear()).angle() * 180.0 / M_PI;
+  if (angle_deg > params.max_angle_deg) return false;
+  return std::max(viewOverlap(a, b, camera, params), viewOverlap(b, a, camera, params)) >=
+         params.min_overlap;
+}
+
+}  // namespace ply_slam

@@ -1,0 +1,539 @@
+// Place recognition on a TUM folder (issue #16, PAPER.md §3.3):
+//   ply_slam_loops --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
+//                  [--model ONNX --input WxH] [--max-frames N] [--min-gap-s 10]
+// Tracks the sequence with the SLAM system, puts every keyframe into the loop detector's
+// database, defines the true loops from groundtruth.txt and writes pr.csv, pr.png (precision-
+// recall over the threshold alpha for ORB only, LBD only, ORB+LBD, ORB+LBD+instances) and
+// summary.json (counts, areas, loops accepted after consistency and the geometric check).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <set>
+#include <sstream>
+
+#include "ply_slam/common/command_line.h"
+#include "ply_slam/common/config.h"
+#include "ply_slam/common/number_text.h"
+#include "ply_slam/common/stopwatch.h"
+#include "ply_slam/eval/loop_ground_truth.h"
+#include "ply_slam/eval/pose_interpolation.h"
+#include "ply_slam/eval/pr_plot.h"
+#include "ply_slam/features/line_extractor.h"
+#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/loop/dynamic_class_mask.h"
+#include "ply_slam/loop/loop_detector.h"
+#include "ply_slam/semantic/mask_folder_segmenter.h"
+#include "ply_slam/semantic/yolo_v8_seg.h"
+#include "ply_slam/system/system.h"
+
+namespace fs = std::filesystem;
+using namespace ply_slam;
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: ply_slam_loops --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]\n"
+    "                      [--model ONNX --input WxH] [--max-frames N] [--min-gap-s S]\n"
+    "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt; yolo: YOLOv8-seg\n"
+    "    (model from the config's segmentation section or --model/--input)\n"
+    "  --min-gap-s: true loops are keyframes more than this many seconds apart (default 10);\n"
+    "    the detector's loop.min_candidate_age_s is set to it\n"
+    "  --keep-long-links: keep the map's covisibility links between keyframes more than\n"
+    "    --min-gap-s apart (default: dropped, as if tracking had not reconnected them; a\n"
+    "    drift-free tracker in a small room links every keyframe to every other, and covisible\n"
+    "    keyframes are never loop candidates)\n"
+    "  vocabularies: the config's loop.orb_vocabulary / loop.lbd_vocabulary (\"\": the defaults\n"
+    "    scripts/setup.sh trains into build/vocabulary/)\n";
+
+struct Options {
+  std::string sequence, config, out, segmenter = "none", model;
+  int input_width = 0, input_height = 0;
+  long max_frames = -1;
+  bool keep_long_links = false;
+  LoopGroundTruthParams truth;
+};
+
+[[noreturn]] void usage(const std::string& error) {
+  std::cerr << "ply_slam_loops: " << error << "\n" << kUsage;
+  std::exit(2);
+}
+
+void setOption(Options& o, const std::string& arg, const std::string& value) {
+  if (arg == "--sequence") {
+    o.sequence = value;
+  } else if (arg == "--config") {
+    o.config = value;
+  } else if (arg == "--out") {
+    o.out = value;
+  } else if (arg == "--segmenter") {
+    if (value != "none" && value != "masks" && value != "yolo")
+      usage("unknown segmenter '" + value + "' (none, masks or yolo)");
+    o.segmenter = value;
+  } else if (arg == "--model") {
+    o.model = value;
+  } else if (arg == "--input") {
+    if (std::sscanf(value.c_str(), "%dx%d", &o.input_width, &o.input_height) != 2 ||
+        o.input_width <= 0 || o.input_height <= 0)
+      usage("--input needs WxH, e.g. 320x320, got '" + value + "'");
+  } else if (arg == "--max-frames") {
+    const auto n = parseWholeNumber(value, 1, 1000000000L);
+    if (!n) usage("--max-frames needs a whole number >= 1, got '" + value + "'");
+    o.max_frames = *n;
+  } else if (arg == "--min-gap-s") {
+    const auto s = parseRealNumber(value);
+    if (!s || *s < 0) usage("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
+    o.truth.min_gap_s = *s;
+  } else {
+    usage("unknown option " + arg);
+  }
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.flags = {"--keep-long-links"};
+  line.options = {"--sequence", "--config", "--out",        "--segmenter",
+                  "--model",    "--input",  "--max-frames", "--min-gap-s"};
+  line.on_flag = [&](const std::string&) { o.keep_long_links = true; };
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    setOption(o, arg, value);
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
+  if (o.sequence.empty() || o.config.empty() || o.out.empty())
+    usage("--sequence, --config and --out are required");
+  return o;
+}
+
+std::unique_ptr<Segmenter> makeSegmenter(const Options& o, const SystemConfig& config,
+                                         const TumSequence& sequence) {
+  if (o.segmenter == "masks") return std::make_unique<MaskFolderSegmenter>(sequence.folder());
+  if (o.segmenter != "yolo") return nullptr;
+  YoloParams yolo = config.segmentation;
+  if (!o.model.empty()) yolo.model_path = o.model;
+  if (o.input_width > 0) {
+    yolo.input_width = o.input_width;
+    yolo.input_height = o.input_height;
+  }
+  return std::make_unique<YoloV8Seg>(yolo);
+}
+
+// The camera of a depth image downsampled by `factor` (the ground truth's overlap test).
+PinholeCamera scaledCamera(const PinholeCamera& c, int factor) {
+  PinholeCamera s = c;
+  s.fx /= factor;
+  s.fy /= factor;
+  s.cx /= factor;
+  s.cy /= factor;
+  s.width = c.width / factor;
+  s.height = c.height / factor;
+  return s;
+}
+
+constexpr int kDepthFactor = 2;  // ground-truth depth kept at half size: 0.3 MB per keyframe
+
+// Tracks the sequence and fills the detector; keeps what the ground truth needs.
+class KeyFrameCollector {
+ public:
+  KeyFrameCollector(const SystemConfig& config, LoopDetector& detector)
+      : config_(config), detector_(detector), lines_(config.lines) {}
+
+  void add(const KeyFramePacket& packet, const std::vector<Instance>& instances) {
+    Stopwatch watch;
+    LoopKeyFrame kf;
+    kf.id = packet.id;
+    kf.stamp = packet.stamp;
+    // Features on people and other movers say nothing about the place: left out.
+    const cv::Mat movers =
+        dynamicClassMask(instances, config_.loop.dynamic_classes, config_.dynamic.mask_dilation_px);
+    std::vector<bool> keep(packet.keypoints.size());
+    for (size_t i = 0; i < keep.size(); ++i) {
+      keep[i] = !onMask(movers, packet.keypoints[i]);
+      if (!keep[i]) continue;
+      kf.keypoints.push_back(packet.keypoints[i]);
+      kf.depth.push_back(packet.keypoint_depth[i]);
+    }
+    kf.orb_descriptors = keptRows(packet.descriptors, keep);
+    kf.lbd_descriptors = describeLines(packet.rgb, movers);
+    kf.instances = boxesFromInstances(instances);
+    line_counts_.push_back(kf.lbd_descriptors.rows);
+    instance_counts_.push_back(static_cast<long>(kf.instances.size()));
+    detector_.addKeyFrame(std::move(kf));
+    add_ms_.push_back(watch.elapsedMs());
+    GroundTruthView view;
+    view.id = packet.id;
+    view.stamp = packet.stamp;
+    cv::resize(packet.depth, view.depth, cv::Size(), 1.0 / kDepthFactor, 1.0 / kDepthFactor,
+               cv::INTER_NEAREST);
+    views_.push_back(std::move(view));
+  }
+
+  std::vector<GroundTruthView>& views() { return views_; }
+
+  // LBD descriptors of the image's lines whose middle is off the movers.
+  cv::Mat describeLines(const cv::Mat& rgb, const cv::Mat& movers) const {
+    cv::Mat gray;
+    cv::cvtColor(rgb, gray, cv::COLOR_BGR2GRAY);
+    std::vector<LineFeature> lines;
+    for (const LineFeature& line : lines_.detect(gray, config_.camera))
+      if (!onMask(movers, 0.5 * (line.raw_start + line.raw_end))) lines.push_back(line);
+    return lines_.describe(gray, lines);
+  }
+  const std::vector<double>& addMs() const { return add_ms_; }
+  double meanLines() const { return mean(line_counts_); }
+  double meanInstances() const { return mean(instance_counts_); }
+
+ private:
+  static double mean(const std::vector<long>& v) {
+    double sum = 0.0;
+    for (long x : v) sum += x;
+    return v.empty() ? 0.0 : sum / v.size();
+  }
+
+  const SystemConfig& config_;
+  LoopDetector& detector_;
+  LineExtractor lines_;
+  std::vector<GroundTruthView> views_;
+  std::vector<double> add_ms_;
+  std::vector<long> line_counts_, instance_counts_;
+};
+
+// Covisibility as the map has it at the end (later keyframes add links to earlier ones), without
+// links between keyframes more than max_link_s apart.
+void copyCovisibility(const Map& map, double max_link_s, LoopDetector& detector) {
+  for (const auto& keyframe : map.keyFrames()) {
+    if (!keyframe) continue;
+    std::map<long, int> covisibility;
+    for (const auto& [other, shared] : keyframe->covisibility)
+      if (other && std::abs(other->stamp - keyframe->stamp) <= max_link_s)
+        covisibility[other->id] = shared;
+    try {
+      detector.setCovisibility(keyframe->id, std::move(covisibility));
+    } catch (const std::out_of_range&) {
+      // A keyframe the detector never got (none today): nothing to update.
+    }
+  }
+}
+
+struct TruthTable {
+  std::set<std::pair<long, long>> pairs;  // (query, earlier keyframe)
+  std::set<long> queries;                 // keyframes with at least one true loop
+  long views_with_pose = 0;
+};
+
+TruthTable trueLoops(std::vector<GroundTruthView>& views, const TumSequence& sequence,
+                     const PinholeCamera& camera, const LoopDetector& detector,
+                     const LoopGroundTruthParams& params) {
+  TruthTable t;
+  std::vector<bool> posed(views.size(), false);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const auto pose = interpolatePose(sequence.groundTruth(), views[i].stamp, 0.1);
+    if (!pose) continue;
+    views[i].T_wc = *pose;
+    posed[i] = true;
+    ++t.views_with_pose;
+  }
+  const PinholeCamera small = scaledCamera(camera, kDepthFactor);
+  for (size_t q = 0; q < views.size(); ++q) {
+    if (!posed[q]) continue;
+    // Keyframes tracking already connected are no loop to find (the detector never offers them).
+    const std::map<long, int>& covisible = detector.keyFrame(views[q].id).covisibility;
+    for (size_t c = 0; c < q; ++c) {
+      if (!posed[c] || covisible.count(views[c].id)) continue;
+      if (!isTrueLoop(views[q], views[c], small, params)) continue;
+      t.pairs.insert({views[q].id, views[c].id});
+      t.queries.insert(views[q].id);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+namespace {
+
+// The ways of recognising a place the curves compare (LoopDetector's VariantScores).
+struct Variant {
+  const char* name;
+  double VariantScores::*score;
+};
+const Variant kVariants[] = {{"orb", &VariantScores::points},
+                             {"lbd", &VariantScores::lines},
+                             {"orb+lbd", &VariantScores::point_line},
+                             {"orb+lbd+instances", &VariantScores::full}};
+constexpr size_t kNumVariants = sizeof(kVariants) / sizeof(kVariants[0]);
+
+struct Best {
+  long id = -1;
+  double normalised = 0.0;
+};
+
+// The query's best candidate under one variant, its score divided by the reference's (the
+// best covisible neighbour's, as alpha is applied); none when the query cannot be judged.
+std::optional<Best> bestNormalised(const LoopQueryScores& s, double VariantScores::*score) {
+  if (!s.reference_id || !(s.reference.*score > 0.0)) return std::nullopt;
+  std::optional<Best> best;
+  for (const ScoredCandidate& c : s.candidates) {
+    const double n = c.raw.*score / s.reference.*score;
+    if (n > 0.0 && (!best || n > best->normalised)) best = Best{c.id, n};
+  }
+  return best;
+}
+
+struct AcceptedLoop {
+  long query = 0, candidate = 0;
+  int inliers_3d = 0, reprojection_inliers = 0;
+  bool correct = false;  // a true loop as defined (time, distance, angle, overlap)
+  // Ground truth of the pair: camera distance and angle, and how far the check's estimated
+  // motion is from the true one (what a loop correction would get wrong).
+  double gt_distance_m = 0.0, gt_angle_deg = 0.0, motion_error_m = 0.0, motion_error_deg = 0.0;
+};
+
+double angleDeg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
+
+AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& candidate,
+                          const GeometricCheckResult& check, const TruthTable& truth) {
+  AcceptedLoop a;
+  a.query = query.id;
+  a.candidate = candidate.id;
+  a.inliers_3d = check.inliers_3d;
+  a.reprojection_inliers = check.reprojection_inliers;
+  a.correct = truth.pairs.count({query.id, candidate.id}) > 0;
+  const Eigen::Isometry3d T_qc = query.T_wc.inverse() * candidate.T_wc;  // ground truth
+  a.gt_distance_m = T_qc.translation().norm();
+  a.gt_angle_deg = angleDeg(T_qc.linear());
+  const Eigen::Isometry3d error = T_qc.inverse() * check.T_query_candidate;
+  a.motion_error_m = error.translation().norm();
+  a.motion_error_deg = angleDeg(error.linear());
+  return a;
+}
+
+// What the detector did over the whole sequence.
+struct LoopRun {
+  std::vector<ScoredDecision> decisions[kNumVariants];
+  std::vector<AcceptedLoop> accepted;
+  long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_false = 0;
+  long judged = 0, candidates = 0, covisible = 0;  // queries with a reference; sums over queries
+  std::vector<double> score_ms, check_ms;
+};
+
+// Every keyframe in order as a query: the curves' decisions, the loops accepted after alpha,
+// consistency and the geometric check, and the geometric check alone on each query's best
+// ORB+LBD+instances candidate (what it would have to stop at any alpha).
+LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& views,
+                   const TruthTable& truth) {
+  LoopRun run;
+  std::map<long, const GroundTruthView*> by_id;
+  for (const GroundTruthView& view : views) by_id[view.id] = &view;
+  for (const GroundTruthView& view : views) {
+    const LoopDetection d = detector.detect(view.id);
+    run.score_ms.push_back(d.score_ms);
+    run.check_ms.push_back(d.check_ms);
+    run.judged += d.scores.reference_id.has_value();
+    run.candidates += static_cast<long>(d.scores.candidates.size());
+    run.covisible += static_cast<long>(detector.keyFrame(view.id).covisibility.size());
+    for (size_t v = 0; v < kNumVariants; ++v) {
+      const std::optional<Best> best = bestNormalised(d.scores, kVariants[v].score);
+      if (best)
+        run.decisions[v].push_back({best->normalised, truth.pairs.count({view.id, best->id}) > 0});
+    }
+    if (d.loop) run.accepted.push_back(acceptedLoop(view, *by_id.at(*d.loop), *d.geometry, truth));
+    const std::optional<Best> best = bestNormalised(d.scores, &VariantScores::full);
+    if (!best) continue;
+    ++run.geometry_checked;
+    if (!detector.verify(view.id, best->id).accepted) continue;
+    (truth.pairs.count({view.id, best->id}) ? run.geometry_passed_true
+                                            : run.geometry_passed_false)++;
+  }
+  return run;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
+}
+
+void writeCurves(const fs::path& out, const std::vector<std::pair<std::string, PrCurve>>& curves,
+                 const std::string& title) {
+  std::ofstream csv(out / "pr.csv");
+  csv << "variant,threshold,detections,true_positives,precision,recall\n" << std::setprecision(6);
+  for (const auto& [name, curve] : curves)
+    for (const PrPoint& p : curve.points)
+      csv << name << ',' << p.threshold << ',' << p.detections << ',' << p.true_positives << ','
+          << p.precision << ',' << p.recall << '\n';
+  if (!csv) throw std::runtime_error((out / "pr.csv").string() + ": cannot write");
+  writePrPlot((out / "pr.png").string(), curves, title);
+}
+
+std::string jsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s << std::setprecision(6) << v;
+  return s.str();
+}
+
+// An accepted loop whose estimated motion is this close to the ground truth's (m, deg) would
+// correct the map rightly even where the pair misses the true-loop definition.
+constexpr double kMotionTolerance_m = 0.1, kMotionTolerance_deg = 2.0;
+
+struct RunInfo {
+  long frames = 0, lost = 0, keyframes = 0;
+  double vocabulary_load_ms = 0.0, mean_lines = 0.0, mean_instances = 0.0;
+  std::vector<double> add_ms;
+};
+
+void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
+                  const TruthTable& truth, const LoopRun& run,
+                  const std::vector<std::pair<std::string, PrCurve>>& curves, double alpha) {
+  long correct = 0, consistent = 0;
+  double worst_m = 0.0, worst_deg = 0.0;
+  for (const AcceptedLoop& a : run.accepted) {
+    correct += a.correct;
+    consistent +=
+        a.motion_error_m <= kMotionTolerance_m && a.motion_error_deg <= kMotionTolerance_deg;
+    worst_m = std::max(worst_m, a.motion_error_m);
+    worst_deg = std::max(worst_deg, a.motion_error_deg);
+  }
+  std::ofstream j(out / "summary.json");
+  j << "{\n  \"sequence\": \"" << o.sequence << "\",\n  \"config\": \"" << o.config
+    << "\",\n  \"segmenter\": \"" << o.segmenter << "\",\n  \"frames\": " << info.frames
+    << ",\n  \"lost_frames\": " << info.lost << ",\n  \"keyframes\": " << info.keyframes
+    << ",\n  \"mean_lines_per_keyframe\": " << jsonNumber(info.mean_lines)
+    << ",\n  \"mean_instances_per_keyframe\": " << jsonNumber(info.mean_instances)
+    << ",\n  \"true_loops\": {\"min_gap_s\": " << o.truth.min_gap_s
+    << ", \"max_distance_m\": " << o.truth.max_distance_m
+    << ", \"max_angle_deg\": " << o.truth.max_angle_deg
+    << ", \"min_overlap\": " << o.truth.min_overlap
+    << ", \"keyframes_with_ground_truth\": " << truth.views_with_pose
+    << ", \"pairs\": " << truth.pairs.size() << ", \"queries\": " << truth.queries.size()
+    << "},\n  \"queries\": {\"judged\": " << run.judged << ", \"mean_candidates\": "
+    << jsonNumber(double(run.candidates) / std::max<long>(1, info.keyframes))
+    << ", \"mean_covisible\": "
+    << jsonNumber(double(run.covisible) / std::max<long>(1, info.keyframes))
+    << "},\n  \"variants\": {";
+  for (size_t v = 0; v < curves.size(); ++v) {
+    const PrCurve& c = curves[v].second;
+    j << (v ? ", " : "") << "\n    \"" << curves[v].first
+      << "\": {\"auc\": " << jsonNumber(c.average_precision)
+      << ", \"recall_at_precision_1\": " << jsonNumber(c.recall_at_full_precision)
+      << ", \"alpha_at_precision_1\": " << jsonNumber(c.threshold_at_full_precision)
+      << ", \"decisions\": " << (c.points.empty() ? 0 : c.points.back().detections) << "}";
+  }
+  j << "\n  },\n  \"accepted_loops\": {\"alpha\": " << alpha
+    << ", \"count\": " << run.accepted.size() << ", \"correct\": " << correct
+    << ", \"false\": " << run.accepted.size() - correct << ", \"precision\": "
+    << jsonNumber(run.accepted.empty() ? 1.0 : double(correct) / run.accepted.size())
+    << ", \"motion_within_tolerance\": " << consistent << ", \"motion_tolerance\": ["
+    << kMotionTolerance_m << ", " << kMotionTolerance_deg
+    << "], \"max_motion_error_m\": " << jsonNumber(worst_m)
+    << ", \"max_motion_error_deg\": " << jsonNumber(worst_deg) << ", \"loops\": [";
+  for (size_t i = 0; i < run.accepted.size(); ++i) {
+    const AcceptedLoop& a = run.accepted[i];
+    j << (i ? ", " : "") << "{\"query\": " << a.query << ", \"candidate\": " << a.candidate
+      << ", \"inliers_3d\": " << a.inliers_3d
+      << ", \"reprojection_inliers\": " << a.reprojection_inliers
+      << ", \"true\": " << (a.correct ? "true" : "false")
+      << ", \"gt_distance_m\": " << jsonNumber(a.gt_distance_m)
+      << ", \"gt_angle_deg\": " << jsonNumber(a.gt_angle_deg)
+      << ", \"motion_error_m\": " << jsonNumber(a.motion_error_m)
+      << ", \"motion_error_deg\": " << jsonNumber(a.motion_error_deg) << "}";
+  }
+  j << "]},\n  \"geometry_on_best_candidates\": {\"checked\": " << run.geometry_checked
+    << ", \"passed_true\": " << run.geometry_passed_true
+    << ", \"passed_false\": " << run.geometry_passed_false << "},\n  \"timing_ms\": {"
+    << "\"vocabulary_load\": " << jsonNumber(info.vocabulary_load_ms)
+    << ", \"add_keyframe_median\": " << jsonNumber(percentile(info.add_ms, 0.5))
+    << ", \"query_median\": " << jsonNumber(percentile(run.score_ms, 0.5))
+    << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0))
+    << ", \"geometric_check_median\": " << jsonNumber(percentile(run.check_ms, 0.5))
+    << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0)) << "}\n}\n";
+  if (!j) throw std::runtime_error((out / "summary.json").string() + ": cannot write");
+}
+
+LoopDetector makeDetector(const SystemConfig& config, double min_gap_s, RunInfo& info) {
+  // Candidates as old as true loops must be: none is left out that could be one.
+  LoopOptions options = config.loop;
+  options.min_candidate_age_s = min_gap_s;
+  Stopwatch watch;
+  LoopDetector detector = LoopDetector::fromOptions(config.camera, options);
+  info.vocabulary_load_ms = watch.elapsedMs();
+  return detector;
+}
+
+// Tracks every frame; each new keyframe goes to the collector.
+void track(const Options& o, const SystemConfig& config, const TumSequence& sequence,
+           KeyFrameCollector& collector, System& system, RunInfo& info) {
+  std::unique_ptr<Segmenter> segmenter = makeSegmenter(o, config, sequence);
+  const size_t n =
+      o.max_frames > 0 ? std::min<size_t>(sequence.size(), o.max_frames) : sequence.size();
+  for (size_t i = 0; i < n; ++i) {
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    const std::vector<Instance> instances =
+        segmenter ? segmenter->segment(images) : std::vector<Instance>{};
+    const FrameResult r = system.process(images, instances);
+    ++info.frames;
+    info.lost += r.tracking.state != TrackingState::kOk;
+    if (r.keyframe_packet) collector.add(*r.keyframe_packet, r.instances);
+  }
+}
+
+int run(const Options& o) {
+  const SystemConfig config = loadConfig(o.config);
+  const TumSequence sequence(o.sequence);
+  if (!sequence.hasGroundTruth())
+    throw std::runtime_error(o.sequence + ": no groundtruth.txt, true loops cannot be defined");
+  fs::create_directories(o.out);
+  RunInfo info;
+  LoopDetector detector = makeDetector(config, o.truth.min_gap_s, info);
+  KeyFrameCollector collector(config, detector);
+  System system(config);
+  track(o, config, sequence, collector, system, info);
+  info.keyframes = static_cast<long>(collector.views().size());
+  info.add_ms = collector.addMs();
+  info.mean_lines = collector.meanLines();
+  info.mean_instances = collector.meanInstances();
+  copyCovisibility(system.map(),
+                   o.keep_long_links ? std::numeric_limits<double>::infinity() : o.truth.min_gap_s,
+                   detector);
+  const TruthTable truth = trueLoops(collector.views(), sequence, config.camera, detector, o.truth);
+  const LoopRun run = runQueries(detector, collector.views(), truth);
+  std::vector<std::pair<std::string, PrCurve>> curves;
+  for (size_t v = 0; v < kNumVariants; ++v)
+    curves.emplace_back(kVariants[v].name,
+                        precisionRecall(run.decisions[v], static_cast<long>(truth.queries.size())));
+  const std::string title = fs::path(sequence.folder()).filename().string() + "  (" +
+                            std::to_string(truth.queries.size()) + " queries with a true loop)";
+  writeCurves(o.out, curves, title);
+  writeSummary(o.out, o, info, truth, run, curves, config.loop.min_normalised_score);
+  long correct = 0;
+  for (const AcceptedLoop& a : run.accepted) correct += a.correct;
+  std::cout << info.frames << " frames, " << info.keyframes << " keyframes, " << truth.pairs.size()
+            << " true loop pairs (" << truth.queries.size() << " queries)\n";
+  for (const auto& [name, curve] : curves)
+    std::cout << "  " << std::left << std::setw(18) << name << " AUC " << std::setprecision(3)
+              << curve.average_precision << ", recall at precision 1 "
+              << curve.recall_at_full_precision << "\n";
+  std::cout << "accepted loops " << run.accepted.size() << " (" << correct << " true); outputs in "
+            << fs::absolute(o.out).string() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    std::cerr << "ply_slam_loops: " << e.what() << "\n";
+    return 1;
+  }
+}
