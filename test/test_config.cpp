@@ -264,9 +264,11 @@ TEST_F(ConfigFileTest, DepthNoiseQuarticTerm) {
   const SystemConfig c = loadConfig(
       writeEdited("delta.yaml", "    gamma: 1.0e-6\n", "    gamma: 0.0\n    delta: 2.5e-5\n"));
   EXPECT_DOUBLE_EQ(c.camera.depth_noise.delta, 2.5e-5);
-  // sigma_Z = 5e-3 Z^2 beside alpha's 2.5e-3 Z: 4.6 cm at 3 m.
-  EXPECT_NEAR(std::sqrt(c.camera.depth_noise.variance(3.0)), std::sqrt(6.25e-6 * 9 + 2.5e-5 * 81),
-              1e-12);
+  // Against the map: sigma_Z = 5e-3 Z^2 beside alpha's 2.5e-3 Z, 4.6 cm at 3 m; within a frame
+  // and between frames a moment apart, alpha's alone.
+  EXPECT_NEAR(std::sqrt(c.camera.depth_noise.varianceAgainstMap(3.0)),
+              std::sqrt(6.25e-6 * 9 + 2.5e-5 * 81), 1e-12);
+  EXPECT_NEAR(c.camera.depth_noise.variance(3.0), 6.25e-6 * 9, 1e-15);
   expectConfigError(writeEdited("negative_delta.yaml", "    gamma: 1.0e-6\n",
                                 "    gamma: 1.0e-6\n    delta: -1.0e-5\n"),
                     {"camera.depth_noise.delta", ">= 0"});

@@ -71,7 +71,7 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
       r.pixel_sigma = f.scale(i);
       if (f.hasDepth(i)) {
         r.depth = f.depth[i];
-        r.depth_sigma = std::sqrt(config_.camera.depth_noise.variance(r.depth));
+        r.depth_sigma = std::sqrt(config_.camera.depth_noise.varianceAgainstMap(r.depth));
       }
       observations.push_back({kf, i, point, r});
     }

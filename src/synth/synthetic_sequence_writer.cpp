@@ -75,9 +75,10 @@ std::string cameraYaml(const PinholeCamera& c, const std::string& comment) {
     << "  distortion: [0.0, 0.0, 0.0, 0.0, 0.0]\n"
     << "  depth_factor: " << c.depth_factor << "\n"
     << "  min_depth: " << c.min_depth << "\n  max_depth: " << c.max_depth << "\n"
-    << "  depth_noise:  # sigma_Z^2 = alpha Z^2 + beta Z + gamma (m^2)\n"
+    << "  depth_noise:  # sigma_Z^2 = alpha Z^2 + beta Z + gamma (+ delta Z^4 against the map; "
+       "m^2)\n"
     << "    alpha: " << c.depth_noise.alpha << "\n    beta: " << c.depth_noise.beta
-    << "\n    gamma: " << c.depth_noise.gamma << "\n";
+    << "\n    gamma: " << c.depth_noise.gamma << "\n    delta: " << c.depth_noise.delta << "\n";
   return y.str();
 }
 

@@ -383,7 +383,7 @@ int Tracker::optimizePose(Frame& frame) {
     o.pixel_sigma = f.scale(i);
     if (f.hasDepth(i)) {
       o.depth = f.depth[i];
-      o.depth_sigma = std::sqrt(config_.camera.depth_noise.variance(o.depth));
+      o.depth_sigma = std::sqrt(config_.camera.depth_noise.varianceAgainstMap(o.depth));
     }
     observations.push_back(o);
     index.push_back(i);

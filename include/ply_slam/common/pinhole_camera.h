@@ -9,19 +9,19 @@
 namespace ply_slam {
 
 // Depth-sensor noise, variance in m^2: sigma_Z^2 = alpha Z^2 + beta Z + gamma (PAPER.md §3.1)
-// + delta Z^4. Depth from disparity (structured light, active stereo) errs by a disparity
-// error sigma_d: sigma_Z = Z^2 sigma_d / (b f), so delta = (sigma_d / (b f))^2; the paper's
-// form has no Z^4 term and underrates the error at 3 m and beyond.
+// within one frame and between frames a moment apart. A depth compared with a landmark mapped
+// from other views has a second error: depth from disparity (structured light, stereo) comes
+// with a spatially varying disparity distortion sigma_d that does not average out as the point
+// crosses the image, sigma_Z = Z^2 sigma_d / (b f): delta Z^4 with delta = (sigma_d / (b f))^2.
 // Defaults: alpha, beta, gamma as in config/tum_fr1.yaml (sigma_Z = 5 mm at 1 m), delta 0.
 struct DepthNoiseModel {
   double alpha = 2.5e-5;
   double beta = 0.0;
   double gamma = 1.0e-5;
   double delta = 0.0;
-  double variance(double z) const {
-    const double z2 = z * z;
-    return alpha * z2 + beta * z + gamma + delta * z2 * z2;
-  }
+  double variance(double z) const { return alpha * z * z + beta * z + gamma; }
+  // A measured depth against a landmark's depth mapped from other views.
+  double varianceAgainstMap(double z) const { return variance(z) + delta * z * z * z * z; }
   // Two depths near z further apart than this are two surfaces (a step at an occluding
   // edge), not one surface's noise: 3 sigma, and at least 2 % of z for unmodelled errors.
   double surfaceGap(double z) const { return std::max(3.0 * std::sqrt(variance(z)), 0.02 * z); }
