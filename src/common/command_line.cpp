@@ -1,6 +1,7 @@
 #include "ply_slam/common/command_line.h"
 
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 
 namespace ply_slam {
@@ -19,6 +20,15 @@ void CommandLine::parse(int argc, char** argv) const {
     if (!options.count(arg)) fail("unknown option " + arg);
     if (i + 1 >= argc) fail("missing value after " + arg);
     on_option(arg, argv[++i]);
+  }
+}
+
+int runReportingErrors(const std::string& tool, const std::function<int()>& run) {
+  try {
+    return run();
+  } catch (const std::exception& e) {
+    std::cerr << tool << ": " << e.what() << "\n";
+    return 1;
   }
 }
 

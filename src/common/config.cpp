@@ -7,75 +7,13 @@
 #include <set>
 #include <sstream>
 
+#include "ply_slam/common/config_section.h"
 #include "ply_slam/loop/loop_options_yaml.h"
 
 namespace ply_slam {
 namespace {
 
-// Reads one YAML map section; remembers which keys were read so that misspelt keys are
-// reported instead of silently falling back to defaults.
-class Section {
- public:
-  Section(const YAML::Node& node, std::string file, std::string name)
-      : node_(node), file_(std::move(file)), name_(std::move(name)) {
-    if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap())
-      throw ConfigError("config " + file_ + ": " + name_ + " must be a map of keys");
-  }
-
-  template <typename T>
-  void read(const std::string& key, T& value, bool required = false) {
-    used_.insert(key);
-    // A section that is absent leaves every key at its default.
-    const YAML::Node v = get(key);
-    if (!v.IsDefined() || v.IsNull()) {
-      if (required) fail(key, "is required");
-      return;
-    }
-    try {
-      value = v.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(key, "has the wrong type (value '" + YAML::Dump(v) + "')");
-    }
-  }
-
-  template <typename T>
-  void readPositive(const std::string& key, T& value, bool required = false) {
-    read(key, value, required);
-    if (!(value > T(0))) fail(key, "must be > 0");
-  }
-
-  Section child(const std::string& key) {
-    used_.insert(key);
-    return Section(get(key), file_, path(key));
-  }
-
-  // Every key present in the file must have been read.
-  void rejectUnknownKeys() const {
-    if (!node_.IsDefined() || node_.IsNull()) return;
-    for (const auto& kv : node_) {
-      const auto key = kv.first.as<std::string>();
-      if (!used_.count(key)) fail(key, "is not a known key");
-    }
-  }
-
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw ConfigError("config " + file_ + ": " + path(key) + " " + what);
-  }
-
-  // The value under key, undefined when this section or the key is absent. Read through a
-  // const node: yaml-cpp's non-const operator[] would insert the key.
-  YAML::Node get(const std::string& key) const {
-    const YAML::Node& node = node_;
-    return node.IsDefined() && node.IsMap() ? node[key] : YAML::Node(YAML::NodeType::Undefined);
-  }
-
-  std::string path(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
-
- private:
-  YAML::Node node_;
-  std::string file_, name_;
-  std::set<std::string> used_;
-};
+using Section = ConfigSection;
 
 void readCamera(Section s, PinholeCamera& c) {
   s.readPositive("fx", c.fx, true);
@@ -266,17 +204,6 @@ void readDense(Section s, DenseParams& d) {
   s.rejectUnknownKeys();
 }
 
-// The loop: section has its own reader (module loop); its errors name the key, this adds the
-// file.
-LoopOptions readLoop(Section& top, const YAML::Node& node, const std::string& path) {
-  top.child("loop");  // marks the key as known
-  try {
-    return loopOptionsFromYaml(node);
-  } catch (const std::runtime_error& e) {
-    throw ConfigError("config " + path + ": " + e.what());
-  }
-}
-
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
@@ -292,7 +219,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   readTracking(top.child("tracking"), config.tracking);
   readDynamic(top.child("dynamic"), config.dynamic);
   readDense(top.child("dense"), config.dense);
-  config.loop = readLoop(top, root["loop"], path);
+  config.loop = readLoopOptions(top.child("loop"));
   config.loop.depth_noise = config.camera.depth_noise;
   top.rejectUnknownKeys();
   return config;

@@ -24,6 +24,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
@@ -247,10 +248,5 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_lines: " << e.what() << "\n";
-    return 1;
-  }
+  return ply_slam::runReportingErrors("ply_slam_lines", [&] { return run(options); });
 }

@@ -530,10 +530,5 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_loops: " << e.what() << "\n";
-    return 1;
-  }
+  return ply_slam::runReportingErrors("ply_slam_loops", [&] { return run(options); });
 }

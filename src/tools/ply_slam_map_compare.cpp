@@ -22,6 +22,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/dense/key_frame_cloud_builder.h"
@@ -247,10 +248,5 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_map_compare: " << e.what() << "\n";
-    return 1;
-  }
+  return ply_slam::runReportingErrors("ply_slam_map_compare", [&] { return run(options); });
 }

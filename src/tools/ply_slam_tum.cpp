@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
@@ -413,10 +414,5 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_tum: " << e.what() << "\n";
-    return 1;
-  }
+  return ply_slam::runReportingErrors("ply_slam_tum", [&] { return run(options); });
 }

@@ -274,10 +274,7 @@ int benchmark(const Options& o) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  try {
+  return ply_slam::runReportingErrors("ply_slam_vocabulary", [&] {
     return options.benchmark ? benchmark(options) : train(options);
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_vocabulary: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }

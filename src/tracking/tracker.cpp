@@ -115,13 +115,16 @@ TrackingResult Tracker::track(Frame& frame) {
   return result;
 }
 
+Eigen::Isometry3d Tracker::predictedPose(double stamp) const {
+  return has_velocity_ ? velocity_.over(stamp - last_frame_->stamp) * last_frame_->T_cw
+                       : last_frame_->T_cw;
+}
+
 bool Tracker::farFromPrediction(const Frame& frame) const {
   if (!has_velocity_ || state_ != TrackingState::kOk) return false;
-  const Eigen::Isometry3d predicted =
-      velocity_.over(frame.stamp - last_frame_->stamp) * last_frame_->T_cw;
   // Camera centres: where the prediction and the solve put the camera.
   const Eigen::Vector3d gap =
-      frame.T_cw.inverse().translation() - predicted.inverse().translation();
+      frame.T_cw.inverse().translation() - predictedPose(frame.stamp).inverse().translation();
   return gap.norm() > config_.tracking.max_prediction_error;
 }
 
@@ -137,8 +140,7 @@ bool Tracker::initialise(Frame& frame) {
 }
 
 bool Tracker::trackWithMotionModel(Frame& frame) {
-  frame.T_cw = has_velocity_ ? velocity_.over(frame.stamp - last_frame_->stamp) * last_frame_->T_cw
-                             : last_frame_->T_cw;
+  frame.T_cw = predictedPose(frame.stamp);
   // The last frame's landmarks, searched at the level they were seen at.
   std::vector<std::shared_ptr<MapPoint>> points;
   std::vector<int> levels;

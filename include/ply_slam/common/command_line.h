@@ -22,4 +22,8 @@ struct CommandLine {
   void parse(int argc, char** argv) const;
 };
 
+// A tool's main after parsing: runs `run`; an exception is reported as "TOOL: what" on stderr
+// and gives exit code 1.
+int runReportingErrors(const std::string& tool, const std::function<int()>& run);
+
 }  // namespace ply_slam

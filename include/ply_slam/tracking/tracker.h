@@ -45,6 +45,8 @@ class Tracker {
 
  private:
   bool initialise(Frame& frame);
+  // The constant-velocity prediction of the pose at `stamp` (the last pose without a velocity).
+  Eigen::Isometry3d predictedPose(double stamp) const;
   // The solved pose lies further from the constant-velocity prediction than a camera moves.
   bool farFromPrediction(const Frame& frame) const;
   bool trackWithMotionModel(Frame& frame);
