@@ -21,6 +21,9 @@ struct KeyFrame {
   std::vector<std::shared_ptr<MapPoint>> map_points;  // per keypoint, may be null
   std::vector<std::shared_ptr<MapLine>> map_lines;    // per line of the frame, may be null
   std::map<KeyFrame*, int> covisibility;              // keyframe -> shared map points
+  // Spanning tree (the pose graph's backbone): the keyframe this one shared the most landmarks
+  // with when it joined the map; null for the first. Set by the mapping side.
+  KeyFrame* parent = nullptr;
 
   Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }
   int trackedPoints(int min_observations = 1) const;

@@ -20,6 +20,8 @@ class Mapper {
   LocalBundleAdjustmentStats insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe);
 
  private:
+  KeyFrame* spanningTreeParent(const KeyFrame& keyframe) const;
+
   const SystemConfig config_;
   Map& map_;
   LandmarkFuser fuser_;
