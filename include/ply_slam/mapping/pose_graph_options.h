@@ -6,7 +6,8 @@ namespace ply_slam {
 // where it comes from; the paper gives none.
 struct PoseGraphOptions {
   // Levenberg-Marquardt iterations at most. ORB-SLAM's essential-graph optimisation runs 20;
-  // a graph with exact edges and a few degrees of drift converges in 3-6 (test_pose_graph).
+  // in test_pose_graph a 20-40 pose square with 1-5 deg of drift converges in 3-5, a 500-pose
+  // circle with 1-16 deg in 9-10.
   int max_iterations = 20;
   // An edge's standard deviations, one per rotation axis and per translation axis. With every
   // edge weighted alike only their ratio moves the solution: how many metres of translation
