@@ -311,10 +311,10 @@ TEST_F(WrittenOffice, LinesLieOnImageEdges) {
 // The same in the other scenes, rendered in memory.
 TEST(SyntheticSequence, LinesLieOnImageEdgesInEveryScene) {
   REQUIRE_TEXTURES();
-  for (SceneKind kind : {SceneKind::kLowTexture, SceneKind::kCorridor}) {
+  for (SceneKind kind : {SceneKind::kLowTexture, SceneKind::kCorridor, SceneKind::kRing}) {
     SynthOptions o;
     o.scene = kind;
-    o.walkers = 1;
+    o.walkers = kind == SceneKind::kRing ? 0 : 1;  // the ring has no room for people
     o.frames = 90;
     const SyntheticSequence seq(o);
     EdgeCheck check;
@@ -437,6 +437,110 @@ TEST(SyntheticSequence, CameraPathIsHandHeldAndLooksIntoTheRoom) {
       EXPECT_GT(nearest, 0.8) << what;
     }
   }
+}
+
+// The circuit alone: four smooth left turns that bring the walk back to its start.
+TEST(Circuit, ClosesAndTurnsSmoothly) {
+  const Eigen::Vector2d start(1.0, -2.0), size(5.0, 3.0);
+  const Circuit c(start, 0.3, size, 1.2);
+  const Circuit::Place end = c.at(c.length());
+  EXPECT_LT((end.position - start).norm(), 1e-9);
+  EXPECT_NEAR(end.heading, 0.3 + 2.0 * kPi, 1e-12);
+  double max_rate = 0.0, max_step = 0.0;
+  const double ds = 0.001;
+  for (double s = 0.0; s + ds <= c.length(); s += ds) {
+    const Circuit::Place a = c.at(s), b = c.at(s + ds);
+    max_step = std::max(max_step, (b.position - a.position).norm() / ds);
+    max_rate = std::max(max_rate, (b.heading - a.heading) / ds);
+  }
+  EXPECT_NEAR(max_step, 1.0, 1e-6);  // arc length is distance walked
+  EXPECT_NEAR(max_rate, c.maxCurvature(), 0.01);
+  EXPECT_THROW(Circuit(start, 0.0, {1.0, 3.0}, 1.2), std::invalid_argument);
+}
+
+// The ring's camera goes once round at a hand-held pace, turns corners at a human rate, stays
+// in the corridor and is back at its first pose, having seen nothing of the start for a
+// long time in between.
+class RingPath : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    REQUIRE_TEXTURES();
+    SynthOptions o;
+    o.scene = SceneKind::kRing;
+    o.frames = defaultFrames(SceneKind::kRing);
+    o.loop = true;
+    seq_ = std::make_unique<SyntheticSequence>(o);
+  }
+  std::unique_ptr<SyntheticSequence> seq_;
+};
+
+TEST_F(RingPath, EndsWhereItStarted) {
+  const Eigen::Isometry3d first = seq_->pose(0), last = seq_->pose(seq_->size() - 1);
+  EXPECT_LT((first.translation() - last.translation()).norm(), 1e-3);
+  EXPECT_LT(Eigen::AngleAxisd(first.linear().transpose() * last.linear()).angle(),
+            0.1 * kPi / 180.0);
+}
+
+TEST_F(RingPath, MovesAtHandHeldSpeeds) {
+  EXPECT_NEAR(seq_->path().meanLinearSpeed(), 0.4, 0.1);
+  EXPECT_NEAR(seq_->path().meanAngularSpeed() * 180.0 / kPi, 30.0, 6.0);
+  // Without the sway: the walk's own turn rate at the corners.
+  CameraPathSpec walk = buildScene(SceneKind::kRing, 0, kDefaultTextureDir).camera;
+  walk.position_extent.setZero();
+  walk.angle_extent.setZero();
+  const CameraPath path(walk, seq_->size(), seq_->options().fps, true, 1);
+  double max_rate = 0.0;
+  for (int i = 1; i < path.frames(); ++i) {
+    const Eigen::Matrix3d R =
+        path.poseAtFrame(i - 1).linear().transpose() * path.poseAtFrame(i).linear();
+    max_rate = std::max(max_rate, Eigen::AngleAxisd(R).angle() * path.fps());
+  }
+  EXPECT_GT(max_rate * 180.0 / kPi, 25.0);  // it does turn
+  EXPECT_LT(max_rate * 180.0 / kPi, 40.0);
+}
+
+TEST_F(RingPath, StaysInTheCorridor) {
+  // The ring's walls (scene_library.cpp): outer 8 x 6 m, the block from (2, 2) to (6, 4).
+  constexpr double kClearance = 0.5;  // m: beyond the sensor's 0.4 m minimum range
+  for (int i = 0; i < seq_->size(); ++i) {
+    const Eigen::Vector3d p = seq_->pose(i).translation();
+    const double to_block =
+        std::max({2.0 - p.x(), p.x() - 6.0, 2.0 - p.y(), p.y() - 4.0});  // outside: > 0
+    const double to_outer = std::min({p.x(), 8.0 - p.x(), p.y(), 6.0 - p.y()});
+    ASSERT_GT(std::min(to_block, to_outer), kClearance) << "frame " << i;
+  }
+}
+
+// Loop detection only compares keyframes at least 10 s apart: the surfaces in the first view
+// are out of sight from 10 s after the start until 10 s before the end.
+TEST_F(RingPath, LeavesTheStartOutOfSightInBetween) {
+  const PinholeCamera& cam = seq_->camera();
+  const std::vector<Quad>& quads = seq_->scene().staticQuads();
+  std::vector<Eigen::Vector3d> seen;  // world points of the first view
+  for (int y = 20; y < cam.height; y += 40)
+    for (int x = 20; x < cam.width; x += 40) {
+      const Eigen::Vector2d uv(x, y);
+      const RayHit hit = seq_->caster().cast(quads, seq_->pose(0), uv);
+      if (hit.surface >= 0) seen.push_back(hit.world);
+    }
+  ASSERT_GT(seen.size(), 150u);
+  const int gap = static_cast<int>(10.0 * seq_->options().fps);
+  for (int i = gap; i < seq_->size() - gap; i += 10) {
+    const Eigen::Isometry3d T_cw = seq_->pose(i).inverse();
+    int visible = 0;
+    for (const Eigen::Vector3d& w : seen) {
+      const Eigen::Vector3d c = T_cw * w;
+      if (c.z() < 0.1 || !cam.inImage(cam.project(c), 0.0)) continue;
+      const RayHit hit = seq_->caster().cast(quads, seq_->pose(i), cam.project(c));
+      visible += hit.surface >= 0 && hit.depth > c.z() - 0.01;
+    }
+    ASSERT_EQ(visible, 0) << "frame " << i;
+  }
+}
+
+TEST(SyntheticSequence, RingHasNoWalkers) {
+  REQUIRE_TEXTURES();
+  EXPECT_THROW(buildScene(SceneKind::kRing, 1, kDefaultTextureDir), std::invalid_argument);
 }
 
 TEST(SyntheticSequence, MissingTexturesNameTheFile) {

@@ -15,13 +15,77 @@ constexpr double kMinHz[2] = {0.08, 0.2}, kMaxHz[2] = {0.5, 1.0};  // position, 
 
 double rotationAngle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
 
+// Share of a corner's turn made after the fraction u of its length: zero rate at both ends.
+double turnShare(double u) { return u * u * (3.0 - 2.0 * u); }
+
+Eigen::Vector2d direction(double heading) { return {std::cos(heading), std::sin(heading)}; }
+
 }  // namespace
+
+Circuit::Circuit(const Eigen::Vector2d& start, double heading, const Eigen::Vector2d& size,
+                 double corner_length)
+    : corner_length_(corner_length) {
+  if (!(corner_length > 0.0)) throw std::invalid_argument("circuit: corner length must be > 0");
+  // A corner cuts the rectangle's corner by the same distance along both sides (it is
+  // symmetric about its bisector), so the straights are the sides less two cuts.
+  const double cut = cornerOffset(corner_length).x();
+  if (size.minCoeff() < 2.0 * cut)
+    throw std::invalid_argument("circuit: a side is shorter than its two corners");
+  // Entered half-way along the first side, left there after the four corners.
+  const double straights[] = {0.5 * size.x() - cut, size.y() - 2.0 * cut, size.x() - 2.0 * cut,
+                              size.y() - 2.0 * cut, 0.5 * size.x() - cut};
+  Place place{start, heading};
+  for (int k = 0; k < 5; ++k) {
+    if (k > 0) place = append(place, corner_length, true);
+    place = append(place, straights[k], false);
+  }
+}
+
+Circuit::Place Circuit::append(const Place& start, double length, bool corner) {
+  pieces_.push_back({start, length, corner});
+  length_ += length;
+  return placeIn(pieces_.back(), length);
+}
+
+Eigen::Vector2d Circuit::cornerOffset(double s) const {
+  // Simpson's rule over the heading's direction: the integrand is smooth, 64 intervals leave
+  // errors far below a micrometre, and every corner uses the same rule, so the walk closes.
+  constexpr int kIntervals = 64;
+  auto f = [&](double x) { return direction(0.5 * kPi * turnShare(x / corner_length_)); };
+  const double h = s / kIntervals;
+  Eigen::Vector2d sum = f(0.0) + f(s);
+  for (int k = 1; k < kIntervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(k * h);
+  return sum * h / 3.0;
+}
+
+Circuit::Place Circuit::placeIn(const Piece& piece, double s) const {
+  Place place = piece.start;
+  if (!piece.corner) {
+    place.position += s * direction(place.heading);
+    return place;
+  }
+  place.position += Eigen::Rotation2Dd(place.heading) * cornerOffset(s);
+  place.heading += 0.5 * kPi * turnShare(s / piece.length);
+  return place;
+}
+
+Circuit::Place Circuit::at(double s) const {
+  s = std::clamp(s, 0.0, length_);
+  size_t k = 0;
+  while (k + 1 < pieces_.size() && s > pieces_[k].length) s -= pieces_[k++].length;
+  return placeIn(pieces_[k], std::min(s, pieces_[k].length));
+}
+
+// The smoothstep's steepest slope is 1.5 at the middle of the turn.
+double Circuit::maxCurvature() const { return 1.5 * 0.5 * kPi / corner_length_; }
 
 CameraPath::CameraPath(const CameraPathSpec& spec, int frames, double fps, bool loop, uint64_t seed)
     : spec_(spec), frames_(frames), fps_(fps), loop_(loop) {
   if (frames < 2) throw std::invalid_argument("camera path: needs at least 2 frames");
   if (!(fps > 0)) throw std::invalid_argument("camera path: fps must be > 0");
   duration_ = (frames - 1) / fps;
+  if (spec.circuit_size.minCoeff() > 0.0)
+    circuit_ = Circuit(spec.centre.head<2>(), spec.yaw, spec.circuit_size, spec.corner_length);
   cv::RNG rng(seed * 2654435761ULL + 12345);
   for (int axis = 0; axis < 6; ++axis) {
     std::vector<double> weights;
@@ -102,9 +166,16 @@ Eigen::Isometry3d CameraPath::poseFrom(const Eigen::Vector3d& position, double y
   return T;
 }
 
+Circuit::Place CameraPath::mean(double t) const {
+  if (circuit_.empty()) return {spec_.centre.head<2>(), spec_.yaw};
+  return circuit_.at(circuit_.length() * t / duration_);
+}
+
 Eigen::Isometry3d CameraPath::pose(double t) const {
   const Eigen::Vector3d angles = offsetAngles(t);
-  return poseFrom(spec_.centre + drift(t) + offsetPosition(t), spec_.yaw + angles[0],
+  const Circuit::Place m = mean(t);
+  const Eigen::Vector3d centre(m.position.x(), m.position.y(), spec_.centre.z());
+  return poseFrom(centre + drift(t) + offsetPosition(t), m.heading + angles[0],
                   spec_.pitch + angles[1], angles[2]);
 }
 

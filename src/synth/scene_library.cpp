@@ -349,6 +349,80 @@ SceneSetup corridor(const std::string& dir, int walkers) {
   return setup;
 }
 
+// Pictures and doors along the walls of the ring. Every picture is a different photograph, so
+// each stretch of the circuit looks like no other and a return is a recognisable place.
+struct WallItem {
+  double x, y;  // on the wall plane
+  Vector3d facing;
+  const char* file;  // nullptr: a door
+  double width;      // the picture's outer width
+};
+
+void ringWalls(Assembler& a) {
+  const Vector3d px(1, 0, 0), py(0, 1, 0);
+  const WallItem items[] = {
+      // Outer walls, facing into the corridor, counter-clockwise from the start's side.
+      {1.0, 0, py, "baboon.jpg", 0.8},
+      {2.6, 0, py, nullptr, 0},
+      {4.2, 0, py, "building.jpg", 1.2},
+      {5.8, 0, py, nullptr, 0},
+      {7.0, 0, py, "fruits.jpg", 0.8},
+      {8, 1.0, -px, "graf1.png", 1.0},
+      {8, 2.6, -px, nullptr, 0},
+      {8, 3.9, -px, "leuvenA.jpg", 1.0},
+      {8, 5.2, -px, "sudoku.png", 0.6},
+      {7.0, 6, -py, "home.jpg", 0.9},
+      {5.6, 6, -py, nullptr, 0},
+      {4.2, 6, -py, "squirrel_cls.jpg", 1.0},
+      {2.8, 6, -py, nullptr, 0},
+      {1.2, 6, -py, "butterfly.jpg", 0.8},
+      {0, 5.0, px, "starry_night.jpg", 1.0},
+      {0, 3.6, px, nullptr, 0},
+      {0, 2.3, px, "HappyFish.jpg", 0.9},
+      {0, 1.0, px, "chicky_512.png", 0.6},
+      // The block's walls, facing out.
+      {3.0, 2, -py, "cards.png", 0.7},
+      {4.9, 2, -py, "messi5.jpg", 1.0},
+      {6, 3.0, px, "aero1.jpg", 1.0},
+      {5.0, 4, py, "left.jpg", 0.8},
+      {3.0, 4, py, "stuff.jpg", 1.0},
+      {2, 3.0, -px, "box_in_scene.png", 0.8}};
+  int doors = 0;
+  for (const WallItem& item : items) {
+    if (item.file) {
+      a.wallPicture({item.x, item.y, 1.55}, item.facing, item.width, item.file);
+    } else {
+      a.door({item.x, item.y, 0}, item.facing, 0.9, 2.05, plain(kPaleLeaves[doors++ % 3]),
+             plain(kDarkWood));
+    }
+  }
+}
+
+// A corridor loop: the walls between its sides keep the camera from seeing a place again until
+// it comes back round, unlike a room with a pillar, whose far walls stay in view all the way.
+SceneSetup ring(const std::string& dir, int walkers) {
+  if (walkers > 0) throw std::invalid_argument("the ring scene has no walkers");
+  SceneSetup setup{Scene("ring"), CameraPathSpec()};
+  Assembler a(setup.scene, dir);
+  const double height = 2.6;
+  const SurfaceMaterial wall = plain(bgr(0.75f, 0.82f, 0.85f));
+  a.room({0, 0, 0}, {8, 6, height}, wall, plain(bgr(0.25f, 0.28f, 0.3f)),
+         plain(bgr(0.85f, 0.85f, 0.85f)));
+  // Floor to ceiling: nothing is seen over it.
+  a.box({2, 2, 0}, {6, 4, height}, plain(bgr(0.7f, 0.78f, 0.86f)));
+  ringWalls(a);
+
+  CameraPathSpec& c = setup.camera;
+  c.centre = {4.0, 1.0, 1.5};   // the middle of the first side, heading +x
+  c.circuit_size = {6.0, 4.0};  // the corridors' centre lines
+  c.corner_length = 1.5;        // 36 deg/s at the middle of a turn at 0.38 m/s
+  c.pitch = -0.1;
+  c.position_extent = {0.2, 0.2, 0.1};
+  c.angle_extent = {0.3, 0.12, 0.07};
+  c.linear_speed = 0.45;  // the walk alone is 0.38 m/s at 1500 frames
+  return setup;
+}
+
 }  // namespace
 
 bool parseSceneKind(const std::string& text, SceneKind* kind) {
@@ -358,6 +432,8 @@ bool parseSceneKind(const std::string& text, SceneKind* kind) {
     *kind = SceneKind::kLowTexture;
   } else if (text == "corridor") {
     *kind = SceneKind::kCorridor;
+  } else if (text == "ring") {
+    *kind = SceneKind::kRing;
   } else {
     return false;
   }
@@ -370,10 +446,14 @@ std::string sceneKindName(SceneKind kind) {
       return "office";
     case SceneKind::kLowTexture:
       return "lowtexture";
-    default:
+    case SceneKind::kCorridor:
       return "corridor";
+    default:
+      return "ring";
   }
 }
+
+int defaultFrames(SceneKind kind) { return kind == SceneKind::kRing ? 1500 : 300; }
 
 SceneSetup buildScene(SceneKind kind, int walkers, const std::string& texture_dir) {
   if (walkers < 0 || walkers > 255) throw std::invalid_argument("walkers must be in 0..255");
@@ -382,8 +462,10 @@ SceneSetup buildScene(SceneKind kind, int walkers, const std::string& texture_di
       return office(texture_dir, walkers, true);
     case SceneKind::kLowTexture:
       return office(texture_dir, walkers, false);
-    default:
+    case SceneKind::kCorridor:
       return corridor(texture_dir, walkers);
+    default:
+      return ring(texture_dir, walkers);
   }
 }
 

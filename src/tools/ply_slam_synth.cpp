@@ -1,5 +1,5 @@
 // Renders a synthetic RGB-D sequence with exact ground truth into a TUM-layout folder:
-//   ply_slam_synth --out DIR [--scene office|lowtexture|corridor] [--walkers N] [--frames N]
+//   ply_slam_synth --out DIR [--scene office|lowtexture|corridor|ring] [--walkers N] [--frames N]
 //                  [--loop] [--noise] [--seed S] [--textures DIR]
 //   ply_slam_synth --benchmark [--scene ...] [--walkers N] [--frames N] [--noise]
 // The benchmark renders (and PNG-encodes in memory) without writing and prints frames/s.
@@ -33,8 +33,9 @@ struct Options {
 };
 
 const char* const kUsage =
-    "usage: ply_slam_synth --out DIR [--scene office|lowtexture|corridor] [--walkers N]\n"
-    "                      [--frames N] [--loop] [--noise] [--seed S] [--textures DIR]\n"
+    "usage: ply_slam_synth --out DIR [--scene office|lowtexture|corridor|ring]\n"
+    "                      [--walkers N] [--frames N] [--loop] [--noise] [--seed S] [--textures "
+    "DIR]\n"
     "       ply_slam_synth --benchmark [--scene S] [--walkers N] [--frames N] [--noise]\n";
 
 [[noreturn]] void usage(const std::string& error) {
@@ -81,7 +82,7 @@ Options parse(int argc, char** argv) {
       o.out = value;
     } else if (arg == "--scene") {
       if (!parseSceneKind(value, &o.synth.scene))
-        usage("unknown scene '" + value + "' (office, lowtexture or corridor)");
+        usage("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
     } else if (arg == "--walkers") {
       o.synth.walkers = static_cast<int>(parseInteger(arg, value, 0, 255));
     } else if (arg == "--frames") {
@@ -94,6 +95,7 @@ Options parse(int argc, char** argv) {
     }
   }
   if (!o.benchmark && o.out.empty()) usage("--out DIR is required");
+  if (!o.frames_given) o.synth.frames = defaultFrames(o.synth.scene);
   if (o.benchmark && !o.frames_given) o.synth.frames = kBenchmarkFrames;
   return o;
 }
