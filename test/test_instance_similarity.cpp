@@ -162,22 +162,6 @@ TEST(NeighbourhoodSimilarity, SortedVectorsOverTheShorterLength) {
   EXPECT_FALSE(neighbourhoodSimilarity({0.3}, {}).has_value());
 }
 
-TEST(BoxesFromInstances, BoundNonZeroMaskPixels) {
-  Instance chair;
-  chair.class_name = "chair";
-  chair.mask = cv::Mat::zeros(480, 640, CV_8UC1);
-  cv::rectangle(chair.mask, cv::Rect(10, 20, 30, 40), cv::Scalar(255), cv::FILLED);
-  chair.mask.at<uchar>(100, 5) = 1;  // one stray pixel widens the box: x 5..39, y 20..100
-  Instance empty;
-  empty.class_name = "tv";
-  empty.mask = cv::Mat::zeros(480, 640, CV_8UC1);
-  Instance none;  // no mask at all
-  const std::vector<InstanceBox> boxes = boxesFromInstances({chair, empty, none});
-  ASSERT_EQ(boxes.size(), 1u);
-  EXPECT_EQ(boxes[0].class_name, "chair");
-  EXPECT_EQ(boxes[0].box, cv::Rect2d(5, 20, 35, 81));
-}
-
 TEST(FinalLoopScore, PaperTable6Example) {
   // S_fin = 0.6 * 0.1345 + 0.4 * 0.92 = 0.0807 + 0.368 = 0.4487.
   EXPECT_NEAR(finalLoopScore(0.1345, 0.92, LoopOptions()), 0.4487, 1e-12);

@@ -11,7 +11,7 @@
 #include "loop_test_data.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
-#include "ply_slam/loop/dynamic_class_mask.h"
+#include "ply_slam/loop/loop_key_frame_builder.h"
 #include "ply_slam/loop/loop_detector.h"
 
 namespace ply_slam {
@@ -217,22 +217,38 @@ TEST(DefaultVocabularies, LoadAndTellImagesApart) {
   EXPECT_GT(bowScore(wa, words(shifted)), 2.0 * bowScore(wa, words(b)));
 }
 
-TEST(DynamicClassMask, CoversMoversDilatedAndNothingElse) {
-  Instance person{1, "person", 1.0f, cv::Mat::zeros(40, 60, CV_8UC1)};
-  person.mask(cv::Rect(10, 10, 5, 5)).setTo(1);
-  Instance chair{2, "chair", 1.0f, cv::Mat::zeros(40, 60, CV_8UC1)};
-  chair.mask(cv::Rect(40, 20, 5, 5)).setTo(1);
-  const cv::Mat mask = dynamicClassMask({person, chair}, LoopOptions().dynamic_classes, 2);
-  EXPECT_TRUE(onMask(mask, {12, 12}));
-  EXPECT_TRUE(onMask(mask, {8.2, 12}));   // within the 2 px dilation
-  EXPECT_FALSE(onMask(mask, {6.0, 12}));  // beyond it
-  EXPECT_FALSE(onMask(mask, {42, 22}));   // a chair does not move by itself
-  EXPECT_FALSE(onMask(mask, {-1, 500}));  // outside the image
-  EXPECT_TRUE(dynamicClassMask({chair}, LoopOptions().dynamic_classes, 2).empty());
-  const cv::Mat rows = (cv::Mat_<uint8_t>(3, 2) << 1, 2, 3, 4, 5, 6);
-  const cv::Mat kept = keptRows(rows, {true, false, true});
-  ASSERT_EQ(kept.rows, 2);
-  EXPECT_EQ(kept.at<uint8_t>(1, 0), 5);
+TEST(LoopKeyFrameBuilder, LeavesOutMoversAndBoxesEveryInstance) {
+  KeyFramePacket packet;
+  packet.id = 7;
+  packet.stamp = 1.5;
+  packet.label_image = cv::Mat::zeros(40, 60, CV_16UC1);
+  packet.label_image(cv::Rect(10, 10, 5, 5)).setTo(1);
+  packet.label_image(cv::Rect(40, 20, 5, 5)).setTo(2);
+  packet.instances = {{1, "person", 1.0f, true}, {2, "chair", 1.0f, false}};
+  // On the person, within the 2 px dilation, beyond it, on the chair (which does not move).
+  packet.keypoints = {{12, 12}, {8.2, 12}, {6.0, 12}, {42, 22}};
+  packet.keypoint_depth = {1.0f, 2.0f, 3.0f, 4.0f};
+  packet.descriptors = cv::Mat::zeros(4, 32, CV_8U);
+  for (int r = 0; r < 4; ++r) packet.descriptors.at<uint8_t>(r, 0) = static_cast<uint8_t>(r);
+  LineParams no_lines;
+  no_lines.enabled = false;
+  const LoopKeyFrameBuilder builder(no_lines, PinholeCamera(), LoopOptions(), 2);
+  const LoopKeyFrame kf = builder.build(packet);
+  EXPECT_EQ(kf.id, 7);
+  ASSERT_EQ(kf.keypoints.size(), 2u);
+  EXPECT_EQ(kf.keypoints[0], Eigen::Vector2d(6.0, 12));
+  EXPECT_EQ(kf.depth, (std::vector<float>{3.0f, 4.0f}));
+  ASSERT_EQ(kf.orb_descriptors.rows, 2);
+  EXPECT_EQ(kf.orb_descriptors.at<uint8_t>(1, 0), 3);
+  EXPECT_TRUE(kf.lbd_descriptors.empty());
+  ASSERT_EQ(kf.instances.size(), 2u);
+  EXPECT_EQ(kf.instances[0].class_name, "person");
+  EXPECT_EQ(kf.instances[1].box, cv::Rect2d(40, 20, 5, 5));
+
+  packet.label_image.release();  // not segmented: every feature stays, no boxes
+  const LoopKeyFrame plain = builder.build(packet);
+  EXPECT_EQ(plain.keypoints.size(), 4u);
+  EXPECT_TRUE(plain.instances.empty());
 }
 
 TEST(VocabularyPath, EmptyMeansTheDefaultAndRelativeMeansThePackage) {

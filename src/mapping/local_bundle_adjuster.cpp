@@ -23,6 +23,8 @@ struct ObservationCost {
   const PinholeCamera& cam;
 };
 
+constexpr int kLocalIterations = 10;  // after each keyframe: the window is small and warm
+
 struct Observation {
   KeyFrame* keyframe;
   size_t index;
@@ -33,13 +35,25 @@ struct Observation {
 }  // namespace
 
 LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyframe) const {
+  // Local keyframes: the new one and its best covisible ones.
+  std::vector<KeyFrame*> keyframes{&keyframe};
+  for (KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
+    keyframes.push_back(kf);
+  return adjustWindow(map, keyframes, kLocalIterations);
+}
+
+LocalBundleAdjustmentStats LocalBundleAdjuster::adjustAll(Map& map, int max_iterations) const {
+  std::vector<KeyFrame*> keyframes;
+  for (const auto& kf : map.keyFrames()) keyframes.push_back(kf.get());
+  return adjustWindow(map, keyframes, max_iterations);
+}
+
+LocalBundleAdjustmentStats LocalBundleAdjuster::adjustWindow(
+    Map& map, const std::vector<KeyFrame*>& keyframes, int max_iterations) const {
   const auto& t = config_.tracking;
   LocalBundleAdjustmentStats stats;
-
-  // Local keyframes: the new one and its best covisible ones. Containers are filled and
-  // walked in a fixed order so that the same input gives the same solution.
-  std::vector<KeyFrame*> keyframes{&keyframe};
-  for (KeyFrame* kf : keyframe.bestCovisible(t.local_map_keyframes)) keyframes.push_back(kf);
+  // Containers are filled and walked in a fixed order so that the same input gives the same
+  // solution.
   std::unordered_set<KeyFrame*> local(keyframes.begin(), keyframes.end());
   std::unordered_map<KeyFrame*, size_t> pose_index;
   std::vector<Se3Params> poses;
@@ -109,7 +123,7 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
 
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_SCHUR;
-  options.max_num_iterations = 10;
+  options.max_num_iterations = max_iterations;
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;
   ceres::Solver::Summary summary;

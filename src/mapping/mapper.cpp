@@ -1,6 +1,17 @@
 #include "ply_slam/mapping/mapper.h"
 
+#include <algorithm>
+
+#include "ply_slam/common/stopwatch.h"
+
 namespace ply_slam {
+
+Mapper::Mapper(const SystemConfig& config, Map& map)
+    : config_(config), map_(map), fuser_(config), bundle_adjuster_(config) {
+  if (config_.loop.enabled)
+    loop_closer_ = std::make_unique<LoopCloser>(
+        LoopDetector::fromOptions(config_.camera, config_.loop), config_, fuser_, map_);
+}
 
 KeyFrame* Mapper::spanningTreeParent(const KeyFrame& keyframe) const {
   const std::vector<KeyFrame*> best = keyframe.bestCovisible(1);
@@ -17,6 +28,42 @@ LocalBundleAdjustmentStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame
   const LocalBundleAdjustmentStats stats = bundle_adjuster_.adjust(map_, *keyframe);
   map_.removeBadPoints();
   return stats;
+}
+
+std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFramePacket& packet) {
+  if (!loop_closer_) return std::nullopt;
+  std::optional<LoopCorrection> correction = loop_closer_->addKeyFrame(keyframe, packet);
+  if (!correction) return correction;
+  Stopwatch watch;
+  if (config_.loop_correction.global_ba_iterations > 0) {
+    const Eigen::Isometry3d before = keyframe.T_wc();
+    bundle_adjuster_.adjustAll(map_, config_.loop_correction.global_ba_iterations);
+    map_.removeBadPoints();
+    correction->world_correction =
+        keyframe.T_wc() * before.inverse() * correction->world_correction;
+  }
+  correction->global_ba_ms = watch.elapsedMs();
+  correction->ms += correction->global_ba_ms;
+  correction->update = wholeMap();
+  return correction;
+}
+
+MapUpdate Mapper::wholeMap() const {
+  MapUpdate update;
+  for (const auto& kf : map_.keyFrames()) {
+    update.stamp = std::max(update.stamp, kf->stamp);
+    update.keyframes.push_back({kf->id, kf->T_wc()});
+  }
+  for (const auto& p : map_.mapPoints())
+    if (!p->bad) update.points.push_back({p->id, p->position});
+  for (const auto& l : map_.mapLines())
+    if (!l->bad) update.lines.push_back({l->id, l->start, l->end});
+  return update;
+}
+
+std::vector<long> Mapper::recognise(const cv::Mat& orb_descriptors, size_t max_results) const {
+  if (!loop_closer_) return {};
+  return loop_closer_->recognise(orb_descriptors, max_results);
 }
 
 }  // namespace ply_slam

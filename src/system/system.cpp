@@ -14,16 +14,6 @@ namespace {
 // Keyframes relocalisation tries, most similar first (ORB-SLAM tries those of its BoW query).
 constexpr size_t kRelocalisationCandidates = 10;
 
-LoopKeyFrame placeKeyFrame(const KeyFrame& kf) {
-  LoopKeyFrame place;
-  place.id = kf.id;
-  place.stamp = kf.stamp;
-  place.orb_descriptors = kf.features.descriptors;
-  place.keypoints = kf.features.undistorted;
-  place.depth = kf.features.depth;
-  return place;
-}
-
 }  // namespace
 
 System::System(const SystemConfig& config)
@@ -37,13 +27,10 @@ System::System(const SystemConfig& config)
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
   }
-  if (config_.loop.enabled) {
-    places_ =
-        std::make_unique<LoopDetector>(LoopDetector::fromOptions(config_.camera, config_.loop));
+  if (mapper_.recognisesPlaces())
     tracker_.setPlaceCandidates([this](const Frame& frame) {
-      return places_->recognise(frame.features.descriptors, kRelocalisationCandidates);
+      return mapper_.recognise(frame.features.descriptors, kRelocalisationCandidates);
     });
-  }
 }
 
 void System::validate(const RgbdImages& images) const {
@@ -126,20 +113,27 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   result.timing.total_ms = total.elapsedMs();
   markInliers(frame, result.features);
 
-  // The mapping side, run in line here so that offline runs are reproducible.
-  if (result.tracking.new_keyframe) {
-    Stopwatch mapping;
-    mapper_.insertKeyFrame(result.tracking.new_keyframe);
-    if (places_) places_->addKeyFrame(placeKeyFrame(*result.tracking.new_keyframe));
-    result.timing.mapping_ms = mapping.elapsedMs();
-    result.keyframe_packet = std::make_shared<const KeyFramePacket>(
-        makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, judged,
-                           result.dynamic_instances, result.dynamic_mask));
+  if (result.tracking.new_keyframe) map(images, judged, result);
+  if (result.tracking.state == TrackingState::kOk) {
+    const auto reference = tracker_.referenceKeyFrame();
+    tracked_.push_back({images.stamp, reference, reference->T_cw * result.tracking.T_cw.inverse()});
   }
-
-  const bool ok = result.tracking.state == TrackingState::kOk;
-  if (ok) camera_trajectory_.push_back({images.stamp, result.tracking.T_cw.inverse()});
   return result;
+}
+
+void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
+                 FrameResult& result) {
+  Stopwatch mapping;
+  KeyFrame& keyframe = *result.tracking.new_keyframe;
+  mapper_.insertKeyFrame(result.tracking.new_keyframe);
+  result.keyframe_packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
+      keyframe, config_.camera, images, judged, result.dynamic_instances, result.dynamic_mask));
+  if (auto correction = mapper_.closeLoop(keyframe, *result.keyframe_packet)) {
+    tracker_.applyCorrection(correction->world_correction);
+    result.tracking.T_cw = result.tracking.T_cw * correction->world_correction.inverse();
+    result.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
+  }
+  result.timing.mapping_ms = mapping.elapsedMs();
 }
 
 void System::rejectDynamic(FrameFeatures& features, double stamp,
@@ -166,6 +160,14 @@ void System::markInliers(const Frame& frame, std::vector<FeatureMark>& marks) {
     mark.inlier = k < frame.map_points.size() && frame.map_points[k] && !frame.outlier[k];
     ++k;
   }
+}
+
+Trajectory System::cameraTrajectory() const {
+  Trajectory trajectory;
+  trajectory.reserve(tracked_.size());
+  for (const TrackedFrame& f : tracked_)
+    trajectory.push_back({f.stamp, f.reference->T_wc() * f.T_reference_camera});
+  return trajectory;
 }
 
 Trajectory System::keyFrameTrajectory() const {

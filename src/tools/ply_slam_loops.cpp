@@ -24,10 +24,9 @@
 #include "ply_slam/eval/loop_ground_truth.h"
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/eval/pr_plot.h"
-#include "ply_slam/features/line_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
-#include "ply_slam/loop/dynamic_class_mask.h"
 #include "ply_slam/loop/loop_detector.h"
+#include "ply_slam/loop/loop_key_frame_builder.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
 #include "ply_slam/system/system.h"
@@ -143,26 +142,12 @@ constexpr int kDepthFactor = 2;  // ground-truth depth kept at half size: 0.3 MB
 class KeyFrameCollector {
  public:
   KeyFrameCollector(const SystemConfig& config, LoopDetector& detector)
-      : config_(config), detector_(detector), lines_(config.lines) {}
+      : detector_(detector),
+        builder_(config.lines, config.camera, config.loop, config.dynamic.mask_dilation_px) {}
 
-  void add(const KeyFramePacket& packet, const std::vector<Instance>& instances) {
+  void add(const KeyFramePacket& packet) {
     Stopwatch watch;
-    LoopKeyFrame kf;
-    kf.id = packet.id;
-    kf.stamp = packet.stamp;
-    // Features on people and other movers say nothing about the place: left out.
-    const cv::Mat movers =
-        dynamicClassMask(instances, config_.loop.dynamic_classes, config_.dynamic.mask_dilation_px);
-    std::vector<bool> keep(packet.keypoints.size());
-    for (size_t i = 0; i < keep.size(); ++i) {
-      keep[i] = !onMask(movers, packet.keypoints[i]);
-      if (!keep[i]) continue;
-      kf.keypoints.push_back(packet.keypoints[i]);
-      kf.depth.push_back(packet.keypoint_depth[i]);
-    }
-    kf.orb_descriptors = keptRows(packet.descriptors, keep);
-    kf.lbd_descriptors = describeLines(packet.rgb, movers);
-    kf.instances = boxesFromInstances(instances);
+    LoopKeyFrame kf = builder_.build(packet);
     line_counts_.push_back(kf.lbd_descriptors.rows);
     instance_counts_.push_back(static_cast<long>(kf.instances.size()));
     detector_.addKeyFrame(std::move(kf));
@@ -176,16 +161,6 @@ class KeyFrameCollector {
   }
 
   std::vector<GroundTruthView>& views() { return views_; }
-
-  // LBD descriptors of the image's lines whose middle is off the movers.
-  cv::Mat describeLines(const cv::Mat& rgb, const cv::Mat& movers) const {
-    cv::Mat gray;
-    cv::cvtColor(rgb, gray, cv::COLOR_BGR2GRAY);
-    std::vector<LineFeature> lines;
-    for (const LineFeature& line : lines_.detect(gray, config_.camera))
-      if (!onMask(movers, 0.5 * (line.raw_start + line.raw_end))) lines.push_back(line);
-    return lines_.describe(gray, lines);
-  }
   const std::vector<double>& addMs() const { return add_ms_; }
   double meanLines() const { return mean(line_counts_); }
   double meanInstances() const { return mean(instance_counts_); }
@@ -197,9 +172,8 @@ class KeyFrameCollector {
     return v.empty() ? 0.0 : sum / v.size();
   }
 
-  const SystemConfig& config_;
   LoopDetector& detector_;
-  LineExtractor lines_;
+  LoopKeyFrameBuilder builder_;
   std::vector<GroundTruthView> views_;
   std::vector<double> add_ms_;
   std::vector<long> line_counts_, instance_counts_;
@@ -481,12 +455,15 @@ void track(const Options& o, const SystemConfig& config, const TumSequence& sequ
     const FrameResult r = system.process(images, instances);
     ++info.frames;
     info.lost += r.tracking.state != TrackingState::kOk;
-    if (r.keyframe_packet) collector.add(*r.keyframe_packet, r.instances);
+    if (r.keyframe_packet) collector.add(*r.keyframe_packet);
   }
 }
 
 int run(const Options& o) {
-  const SystemConfig config = loadConfig(o.config);
+  SystemConfig config = loadConfig(o.config);
+  // The system under the evaluation only tracks: its own loop closure would move the map and
+  // link the very keyframes whose recognition is measured.
+  config.loop.enabled = false;
   const TumSequence sequence(o.sequence);
   if (!sequence.hasGroundTruth())
     throw std::runtime_error(o.sequence + ": no groundtruth.txt, true loops cannot be defined");

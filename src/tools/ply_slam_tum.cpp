@@ -49,6 +49,7 @@ struct Options {
   std::string model;                      // overrides the config's segmentation.model
   int input_width = 0, input_height = 0;  // and its input size
   bool no_lines = false;                  // overrides lines.enabled of the config
+  bool no_loop = false;                   // overrides loop.enabled of the config
   std::string dynamic;                    // overrides dynamic.mode of the config
   bool live = false;                      // frames at their own pace, segmentation beside
   long save_images = 0;                   // every N frames a tracking image; 0 = none
@@ -61,8 +62,9 @@ struct Options {
       << "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
          " [--segmenter none|masks|yolo] [--model ONNX --input WxH]"
          " [--dynamic off|geometric|semantic|full] [--live] [--save-images N] [--max-frames N]"
-         " [--no-lines]\n"
+         " [--no-lines] [--no-loop]\n"
          "  --no-lines: points only, whatever lines.enabled says\n"
+         "  --no-loop: no place recognition nor loop closure, whatever loop.enabled says\n"
          "  --dynamic: how dynamic features are rejected (default: the config's dynamic.mode)\n"
          "  --live: play the frames at their recorded rate and segment on a second thread, as\n"
          "          the ROS node does (results then depend on timing)\n"
@@ -85,8 +87,8 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--no-lines" || arg == "--live") {
-      (arg == "--live" ? o.live : o.no_lines) = true;
+    if (arg == "--no-lines" || arg == "--live" || arg == "--no-loop") {
+      (arg == "--live" ? o.live : arg == "--no-loop" ? o.no_loop : o.no_lines) = true;
       continue;
     }
     if (i + 1 >= argc) usage("missing value after " + arg);
@@ -241,9 +243,38 @@ std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, con
   return json.str();
 }
 
+// Loop closure's counts and each correction (null when loop closure is off).
+std::string loopsJson(const System& system,
+                      const std::vector<std::shared_ptr<const LoopCorrection>>& corrections) {
+  const LoopClosureCounts* counts = system.loopCounts();
+  if (!counts) return "null";
+  double global_ba_ms = 0.0;
+  for (const auto& c : corrections) global_ba_ms += c->global_ba_ms;
+  std::ostringstream json;
+  json << "{\"queries\": " << counts->queries << ", \"detected\": " << counts->detected
+       << ", \"accepted\": " << counts->accepted << ", \"implausible\": " << counts->implausible
+       << ", \"corrected\": " << counts->corrected
+       << ", \"pose_graph_ms\": " << counts->pose_graph_ms << ", \"global_ba_ms\": " << global_ba_ms
+       << ", \"corrections\": [";
+  for (size_t i = 0; i < corrections.size(); ++i) {
+    const LoopCorrection& c = *corrections[i];
+    json << (i ? ", " : "") << "{\"query\": " << c.loop.query_id
+         << ", \"candidate\": " << c.loop.candidate_id
+         << ", \"moved_m\": " << c.moved_m << ", \"turned_deg\": " << c.turned_deg
+         << ", \"connected\": " << c.connected_keyframes << ", \"fused\": " << c.fused
+         << ", \"loop_links\": " << c.loop_links
+         << ", \"pose_graph_iterations\": " << c.pose_graph.iterations
+         << ", \"pose_graph_ms\": " << c.pose_graph.ms << ", \"global_ba_ms\": " << c.global_ba_ms
+         << ", \"ms\": " << c.ms << "}";
+  }
+  json << "]}";
+  return json.str();
+}
+
 int run(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
+  if (options.no_loop) config.loop.enabled = false;
   if (!options.dynamic.empty()) config.dynamic.mode = options.dynamic;
   const TumSequence sequence(options.sequence);
   fs::create_directories(options.out);
@@ -293,6 +324,7 @@ int run(const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   double first_stamp = -1.0;
   std::vector<double> segment_ms;
+  std::vector<std::shared_ptr<const LoopCorrection>> corrections;
   for (size_t i = 0; i < n && failure.empty(); ++i) {
     FrameResult r;
     std::vector<Instance> instances;
@@ -319,6 +351,8 @@ int run(const Options& options) {
               : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
       if (walker_masks) classification.add(r.features, walkers);
       if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
+      if (dense && r.loop_correction) dense->push(r.loop_correction->update);
+      if (r.loop_correction) corrections.push_back(r.loop_correction);
     } catch (const std::exception& e) {
       failure = e.what();
       break;
@@ -374,6 +408,7 @@ int run(const Options& options) {
        << "  \"tracking_ms_median\": " << percentile(total_ms, 0.5) << ",\n"
        << "  \"tracking_ms_p95\": " << percentile(total_ms, 0.95) << ",\n"
        << "  \"peak_rss_mb\": " << peakRssMb();
+  json << ",\n  \"loops\": " << loopsJson(system, corrections);
 
   std::string title = "ply_slam  " + fs::path(sequence.folder()).filename().string();
   Trajectory aligned = system.cameraTrajectory();

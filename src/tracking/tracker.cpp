@@ -115,6 +115,10 @@ TrackingResult Tracker::track(Frame& frame) {
   return result;
 }
 
+void Tracker::applyCorrection(const Eigen::Isometry3d& world_correction) {
+  if (last_frame_) last_frame_->T_cw = last_frame_->T_cw * world_correction.inverse();
+}
+
 Eigen::Isometry3d Tracker::predictedPose(double stamp) const {
   return has_velocity_ ? velocity_.over(stamp - last_frame_->stamp) * last_frame_->T_cw
                        : last_frame_->T_cw;

@@ -6,6 +6,7 @@
 
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/loop/loop_options.h"
+#include "ply_slam/mapping/loop_correction_options.h"
 
 namespace ply_slam {
 
@@ -164,6 +165,7 @@ struct SystemConfig {
   DynamicParams dynamic;
   DenseParams dense;
   LoopOptions loop;  // place recognition (loop module); its depth noise is the camera's
+  LoopCorrectionOptions loop_correction;  // closing an accepted loop (mapping module)
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and

@@ -4,7 +4,6 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/semantic/instance.h"
 
 namespace ply_slam {
 
@@ -19,9 +18,5 @@ struct InstanceFrame {
   cv::Size image_size;  // W x H, for the diagonal that normalises distances
   std::vector<InstanceBox> boxes;
 };
-
-// Boxes of segmenter instances: the bounding rectangle of each mask's non-zero pixels.
-// Instances with an empty mask have no box and are left out.
-std::vector<InstanceBox> boxesFromInstances(const std::vector<Instance>& instances);
 
 }  // namespace ply_slam

@@ -24,8 +24,16 @@ class LocalBundleAdjuster {
   LocalBundleAdjuster(const SystemConfig& config) : config_(config) {}
 
   LocalBundleAdjustmentStats adjust(Map& map, KeyFrame& keyframe) const;
+  // Every keyframe and landmark (global bundle adjustment, after a loop), the first keyframe
+  // fixed.
+  LocalBundleAdjustmentStats adjustAll(Map& map, int max_iterations) const;
 
  private:
+  // Adjusts the keyframes' poses and every landmark they see; other keyframes that see those
+  // landmarks, and the first keyframe, stay fixed.
+  LocalBundleAdjustmentStats adjustWindow(Map& map, const std::vector<KeyFrame*>& keyframes,
+                                          int max_iterations) const;
+
   const SystemConfig config_;
 };
 

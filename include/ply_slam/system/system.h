@@ -11,7 +11,6 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
-#include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/mapper.h"
@@ -52,6 +51,9 @@ struct FrameResult {
   cv::Mat dynamic_mask;              // their dilated union (8UC1), empty when none
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
+  // Set when the keyframe closed a loop: what moved (keyframes and landmarks; the dense maps
+  // re-place their keyframes with it).
+  std::shared_ptr<const LoopCorrection> loop_correction;
 };
 
 // A frame the system cannot use (empty, wrong encoding or size, stamp not increasing).
@@ -74,8 +76,12 @@ class System {
   // positions and merges go into the map the tracker uses. Returns the entries applied.
   size_t applyMapUpdate(const MapUpdate& update) { return map_.applyUpdate(update); }
 
-  const Trajectory& cameraTrajectory() const { return camera_trajectory_; }  // tracked frames
+  // Tracked frames, each placed relative to its reference keyframe as the map has that keyframe
+  // now: bundle adjustment and loop closure move the past with the map.
+  Trajectory cameraTrajectory() const;
   Trajectory keyFrameTrajectory() const;
+  // Loop closure's counts; null without loop.enabled.
+  const LoopClosureCounts* loopCounts() const { return mapper_.loopCounts(); }
   const Map& map() const { return map_; }
   const SystemConfig& config() const { return config_; }
 
@@ -85,6 +91,16 @@ class System {
   void rejectDynamic(FrameFeatures& features, double stamp, const std::vector<Instance>& instances,
                      FrameResult& result);
   static void markInliers(const Frame& frame, std::vector<FeatureMark>& marks);
+  // The mapping side, in line so that offline runs are reproducible: map upkeep, the packet,
+  // then the loop query (which needs the packet's images).
+  void map(const RgbdImages& images, const std::vector<Instance>& judged, FrameResult& result);
+
+  // A tracked frame: where it was relative to its reference keyframe.
+  struct TrackedFrame {
+    double stamp = 0.0;
+    std::shared_ptr<const KeyFrame> reference;
+    Eigen::Isometry3d T_reference_camera = Eigen::Isometry3d::Identity();
+  };
 
   SystemConfig config_;
   OrbExtractor extractor_;
@@ -95,12 +111,9 @@ class System {
   Map map_;
   Tracker tracker_;
   Mapper mapper_;
-  // With loop.enabled: every keyframe's ORB words, so that relocalisation tries the keyframes
-  // that look like the lost frame instead of all of them.
-  std::unique_ptr<LoopDetector> places_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
-  Trajectory camera_trajectory_;
+  std::vector<TrackedFrame> tracked_;
 };
 
 }  // namespace ply_slam

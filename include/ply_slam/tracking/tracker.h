@@ -39,7 +39,13 @@ class Tracker {
   TrackingResult track(Frame& frame);
   // Once set, relocalisation tries only these keyframes; unset, every keyframe newest first.
   void setPlaceCandidates(PlaceCandidates candidates) { place_candidates_ = std::move(candidates); }
+  // A loop closure moved the map: T_wc(after) = world_correction * T_wc(before) around the
+  // current keyframe. The last frame moves the same, so the next prediction lands in the
+  // corrected map.
+  void applyCorrection(const Eigen::Isometry3d& world_correction);
   TrackingState state() const { return state_; }
+  // The keyframe the current pose is tracked from (the newest); null before initialisation.
+  std::shared_ptr<const KeyFrame> referenceKeyFrame() const { return last_keyframe_; }
   // The camera's current velocity, null when unknown (start, after a loss).
   const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
 

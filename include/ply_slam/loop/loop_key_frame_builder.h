@@ -1,0 +1,36 @@
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/features/line_extractor.h"
+#include "ply_slam/loop/loop_detector.h"
+#include "ply_slam/map/key_frame_packet.h"
+
+namespace ply_slam {
+
+// What place recognition keeps of a keyframe, from the packet the mapping side receives: its
+// ORB features with depth, the LBD descriptors of the lines in its image and its instances'
+// boxes. Features and lines on instances of moving classes (LoopOptions::dynamic_classes) are
+// left out: a person's features match the same person anywhere.
+class LoopKeyFrameBuilder {
+ public:
+  LoopKeyFrameBuilder(const LineParams& lines, const PinholeCamera& camera, const LoopOptions& loop,
+                      int mask_dilation_px);
+
+  LoopKeyFrame build(const KeyFramePacket& packet) const;
+
+ private:
+  // Pixels of the packet's instances of moving classes, dilated; empty when none.
+  cv::Mat moverMask(const KeyFramePacket& packet) const;
+  // LBD descriptors of the image's lines whose middle is off the movers (empty: lines off).
+  cv::Mat describeLines(const cv::Mat& rgb, const cv::Mat& movers) const;
+
+  LineExtractor lines_;
+  bool lines_enabled_;
+  PinholeCamera camera_;
+  std::vector<std::string> mover_classes_;
+  int mask_dilation_px_;
+};
+
+}  // namespace ply_slam

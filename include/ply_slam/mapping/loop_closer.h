@@ -1,0 +1,57 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "ply_slam/common/config.h"
+#include "ply_slam/loop/loop_detector.h"
+#include "ply_slam/loop/loop_key_frame_builder.h"
+#include "ply_slam/mapping/loop_corrector.h"
+
+namespace ply_slam {
+
+struct LoopClosureCounts {
+  long queries = 0;
+  long detected = 0;           // queries with a candidate consistent over loop.consistency queries
+  long accepted = 0;           // of them, a candidate passed the geometric check
+  long implausible = 0;        // accepted, but asking for more correction than drift explains
+  long corrected = 0;          // loops closed in the map
+  double pose_graph_ms = 0.0;  // summed over the corrections
+};
+
+// The mapping side's place recognition: every keyframe goes into the database (points, lines,
+// instances), is queried for a loop, and an accepted loop is closed in the map.
+class LoopCloser {
+ public:
+  LoopCloser(LoopDetector detector, const SystemConfig& config, const LandmarkFuser& fuser,
+             Map& map);
+
+  // After the keyframe was fused and adjusted: database, query, correction. Returns the
+  // correction when a loop was closed.
+  std::optional<LoopCorrection> addKeyFrame(KeyFrame& keyframe, const KeyFramePacket& packet);
+  // Relocalisation: keyframes that look like the descriptors, most similar first.
+  std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const {
+    return detector_.recognise(orb_descriptors, max_results);
+  }
+  const LoopClosureCounts& counts() const { return counts_; }
+
+ private:
+  // The detector's covisibility of the keyframe and its neighbours, from the map's.
+  void syncCovisibility(const KeyFrame& keyframe);
+  KeyFrame* keyFrame(long id) const;
+  // Whether the loop's correction of the query is within the drift the tracker could have
+  // gathered since the candidate (LoopCorrectionOptions).
+  bool plausible(const KeyFrame& query, const KeyFrame& candidate,
+                 const Eigen::Isometry3d& T_query_candidate) const;
+
+  LoopDetector detector_;
+  LoopKeyFrameBuilder builder_;
+  LoopCorrector corrector_;
+  LoopCorrectionOptions options_;
+  Map& map_;
+  LoopClosureCounts counts_;
+  long last_loop_keyframe_ = -1;
+};
+
+}  // namespace ply_slam
