@@ -359,14 +359,40 @@ TEST_F(ConfigFileTest, LoopSection) {
   expectConfigError(write("map.yaml", base + "loop: 3\n"), {"loop"});
 }
 
-TEST(ShippedConfig, LoopSectionUsesTheDefaultVocabularies) {
-  for (const char* file : {"tum_fr1.yaml", "tum_fr2.yaml", "tum_fr3.yaml", "d435i.yaml"}) {
+TEST(ShippedConfig, LoopClosureOnWithTheDefaultVocabularies) {
+  const LoopCorrectionOptions defaults;
+  for (const char* file :
+       {"tum_fr1.yaml", "tum_fr2.yaml", "tum_fr3.yaml", "d435i.yaml", "bonn.yaml"}) {
     const SystemConfig config = loadConfig(kConfigDir + file);
-    EXPECT_FALSE(config.loop.enabled) << file;
+    EXPECT_TRUE(config.loop.enabled) << file;
+    // The files spell out the defaults (one place to read them, one to change them).
+    const LoopCorrectionOptions& c = config.loop_correction;
+    EXPECT_EQ(c.strong_covisibility, defaults.strong_covisibility) << file;
+    EXPECT_EQ(c.max_drift_fraction, defaults.max_drift_fraction) << file;
+    EXPECT_EQ(c.max_drift_floor_m, defaults.max_drift_floor_m) << file;
+    EXPECT_EQ(c.min_keyframes_between, defaults.min_keyframes_between) << file;
+    EXPECT_EQ(c.pose_graph.rotation_sigma_rad, defaults.pose_graph.rotation_sigma_rad) << file;
+    EXPECT_EQ(c.global_ba_iterations, defaults.global_ba_iterations) << file;
     EXPECT_EQ(config.loop.orb_vocabulary, "") << file;
     EXPECT_EQ(config.loop.lbd_vocabulary, "") << file;
     EXPECT_EQ(config.loop.consistency, 3) << file;
   }
+}
+
+TEST(LoopCorrectionSection, OutOfRangeAndUnknownKeysNameTheKey) {
+  const std::string base = "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n";
+  try {
+    loadConfigFromString(base + "loop_correction: {max_drift_fraction: -0.1}\n", "test");
+    FAIL() << "a negative drift fraction was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("loop_correction.max_drift_fraction"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(loadConfigFromString(base + "loop_correction: {pose_graph_iteration: 3}\n", "test"),
+               ConfigError);
+  EXPECT_EQ(loadConfigFromString(base + "loop_correction: {global_ba_iterations: 0}\n", "test")
+                .loop_correction.global_ba_iterations,
+            0);
 }
 
 }  // namespace
