@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <iostream>
 
 #include "default_vocabularies.h"
 #include "ply_slam/common/config.h"
@@ -55,6 +56,8 @@ TEST(LoopClosure, HalvesTheDriftOfOneWalkRoundTheRing) {
   const RunOutcome drifting = track(sequence, config, false);
   const RunOutcome closed = track(sequence, config, true);
   std::filesystem::remove_all(dir);
+  std::cout << "ATE without loop closure " << drifting.ate << " m, with " << closed.ate << " m ("
+            << closed.loops_closed << " loops closed)\n";
   EXPECT_EQ(drifting.lost, 0u);
   EXPECT_EQ(closed.lost, 0u);
   // Measured (docs/RESULTS.md): 0.022 m without, 0.0092 m with two loops closed.
