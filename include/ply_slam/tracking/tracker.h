@@ -42,6 +42,9 @@ class Tracker {
   TrackingState state() const { return state_; }
   // The camera's current velocity, null when unknown (start, after a loss).
   const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
+  // The keyframe tracking refers to (the newest, or the one relocalised against); null before
+  // initialisation. The mapping side must not cull it.
+  const std::shared_ptr<KeyFrame>& referenceKeyFrame() const { return last_keyframe_; }
 
  private:
   bool initialise(Frame& frame);
