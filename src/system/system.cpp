@@ -129,8 +129,14 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   // The mapping side, run in line here so that offline runs are reproducible.
   if (result.tracking.new_keyframe) {
     Stopwatch mapping;
-    mapper_.insertKeyFrame(result.tracking.new_keyframe);
-    if (places_) places_->addKeyFrame(placeKeyFrame(*result.tracking.new_keyframe));
+    const KeyFrameInsertionStats mapped =
+        mapper_.insertKeyFrame(result.tracking.new_keyframe, {tracker_.referenceKeyFrame()->id});
+    result.culled_keyframes = mapped.culled_keyframes;
+    result.culled_points = mapped.culled_points;
+    if (places_) {
+      for (long id : mapped.culled_keyframes) places_->removeKeyFrame(id);
+      places_->addKeyFrame(placeKeyFrame(*result.tracking.new_keyframe));
+    }
     result.timing.mapping_ms = mapping.elapsedMs();
     result.keyframe_packet = std::make_shared<const KeyFramePacket>(
         makeKeyFramePacket(*result.tracking.new_keyframe, config_.camera, images, judged,
