@@ -327,6 +327,7 @@ int run(const Options& options) {
               ? walkerPixels(instances, images.rgb.size(), config.dynamic)
               : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
       if (walker_masks) classification.add(r.features, walkers);
+      if (dense) dense->erase(r.culled_keyframes);
       if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
     } catch (const std::exception& e) {
       failure = e.what();

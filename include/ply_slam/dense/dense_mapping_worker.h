@@ -30,6 +30,10 @@ class DenseMappingWorker {
   void push(std::shared_ptr<const KeyFramePacket> packet, cv::Mat tag_mask = cv::Mat());
   // Queues pose corrections: changed keyframes are re-placed and the octree rebuilt.
   void push(const MapUpdate& update);
+  // Queues the erasure of keyframes the sparse map culled: their clouds leave the dense map
+  // (the space is mapped by the keyframes that made them redundant); the octree keeps what
+  // they added, as it is bounded by the place, not by the time spent there.
+  void erase(std::vector<long> keyframe_ids);
   // Processes everything queued, then stops the thread. Idempotent.
   void finish();
 
@@ -50,6 +54,7 @@ class DenseMappingWorker {
     std::shared_ptr<const KeyFramePacket> packet;
     cv::Mat tag_mask;
     std::shared_ptr<const MapUpdate> update;
+    std::vector<long> erased;  // keyframe ids
   };
   void run();
   void process(const Job& job);
