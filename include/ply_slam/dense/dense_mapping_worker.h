@@ -31,8 +31,8 @@ class DenseMappingWorker {
   // Queues pose corrections: changed keyframes are re-placed and the octree rebuilt.
   void push(const MapUpdate& update);
   // Queues the erasure of keyframes the sparse map culled: their clouds leave the dense map
-  // (the space is mapped by the keyframes that made them redundant); the octree keeps what
-  // they added, as it is bounded by the place, not by the time spent there.
+  // (the keyframes that made them redundant see the same space). The octree keeps what they
+  // added until it is rebuilt from the remaining clouds after a pose correction.
   void erase(std::vector<long> keyframe_ids);
   // Processes everything queued, then stops the thread. Idempotent.
   void finish();
