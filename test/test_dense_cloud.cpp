@@ -245,6 +245,25 @@ TEST(DenseMap, PlacesKeyFramesAndRePlacesThoseWhosePoseChanged) {
   EXPECT_THROW(map.insert(KeyFrameCloud{}), std::invalid_argument);
 }
 
+TEST(DenseMap, ErasedKeyFramesLeaveTheGlobalCloud) {
+  DenseMap map(0.01);
+  for (long id : {1, 2, 3}) {
+    KeyFrameCloud cloud;
+    cloud.id = id;
+    cloud.points = std::make_shared<DenseCloud>();
+    pcl::PointXYZRGBL p;
+    p.x = 0, p.y = 0, p.z = id, p.label = 0;
+    cloud.points->push_back(p);
+    map.insert(cloud);
+  }
+  ASSERT_EQ(map.numGlobalPoints(), 3u);
+  EXPECT_EQ(map.erase({2, 99}), 1u);  // 99: unknown, ignored
+  EXPECT_EQ(map.numKeyFrames(), 2u);
+  const DenseCloudPtr global = map.globalCloud();
+  ASSERT_EQ(global->size(), 2u);
+  for (const auto& p : global->points) EXPECT_NE(std::lround(p.z), 2);
+}
+
 TEST(ClassPalette, OneDistinctColourPerCocoClassAndUnknown) {
   const ClassPalette palette;
   ASSERT_EQ(palette.size(), 81u);

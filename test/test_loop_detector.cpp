@@ -132,6 +132,19 @@ TEST_F(LoopDetectorTest, QueriesSeeOnlyKeyFramesOldEnough) {
   EXPECT_FALSE(detector.score(15).reference_id.has_value());
 }
 
+TEST_F(LoopDetectorTest, ARemovedKeyFrameIsNoLongerFound) {
+  LoopDetector detector = filledDetector();
+  detector.removeKeyFrame(3);   // culled: the first pass over window 300
+  detector.removeKeyFrame(99);  // never added: ignored
+  EXPECT_EQ(detector.size(), 18u);
+  EXPECT_THROW(detector.keyFrame(3), std::out_of_range);
+  for (const ScoredCandidate& c : detector.score(17).candidates) EXPECT_NE(c.id, 3);
+  for (long id : detector.recognise(detector.keyFrame(17).orb_descriptors, 20)) EXPECT_NE(id, 3);
+  // Keyframe 4's only earlier covisible keyframe was 3: it is scored without a reference.
+  EXPECT_FALSE(detector.score(4).reference_id.has_value());
+  EXPECT_EQ(*detector.score(5).reference_id, 4);
+}
+
 TEST_F(LoopDetectorTest, AcceptsTheLoopOnTheThirdConsistentQueryWithItsMotion) {
   LoopDetector detector = filledDetector();
   for (long q = 1; q <= 14; ++q) EXPECT_FALSE(detector.detect(q).loop) << "query " << q;

@@ -54,6 +54,13 @@ void DenseMap::insert(KeyFrameCloud cloud) {
   dirty_ = true;
 }
 
+size_t DenseMap::erase(const std::vector<long>& ids) {
+  size_t erased = 0;
+  for (long id : ids) erased += keyframes_.erase(id);
+  dirty_ |= erased > 0;
+  return erased;
+}
+
 std::vector<long> DenseMap::applyUpdate(const MapUpdate& update) {
   std::vector<long> changed;
   for (const auto& pose : update.keyframes) {

@@ -32,11 +32,15 @@ void DenseMappingWorker::enqueue(Job job) {
 
 void DenseMappingWorker::push(std::shared_ptr<const KeyFramePacket> packet, cv::Mat tag_mask) {
   if (!packet) throw std::invalid_argument("DenseMappingWorker::push: null packet");
-  enqueue({std::move(packet), std::move(tag_mask), nullptr});
+  enqueue({std::move(packet), std::move(tag_mask), nullptr, {}});
+}
+
+void DenseMappingWorker::erase(std::vector<long> keyframe_ids) {
+  if (!keyframe_ids.empty()) enqueue({nullptr, cv::Mat(), nullptr, std::move(keyframe_ids)});
 }
 
 void DenseMappingWorker::push(const MapUpdate& update) {
-  enqueue({nullptr, cv::Mat(), std::make_shared<const MapUpdate>(update)});
+  enqueue({nullptr, cv::Mat(), std::make_shared<const MapUpdate>(update), {}});
 }
 
 void DenseMappingWorker::finish() {
@@ -82,6 +86,9 @@ void DenseMappingWorker::process(const Job& job) {
       // Ray casting cannot be undone per keyframe: the octree is rebuilt in keyframe order.
       octree_.clear();
       for (const auto& [id, cloud] : map_.keyFrames()) octree_.insert(cloud);
+    } else if (!job.erased.empty()) {
+      std::lock_guard<std::mutex> lock(maps_mutex_);
+      map_.erase(job.erased);
     }
   } catch (const std::exception& e) {
     std::lock_guard<std::mutex> lock(queue_mutex_);

@@ -53,6 +53,10 @@ void LoopDetector::addKeyFrame(LoopKeyFrame keyframe) {
   keyframes_[id] = std::move(e);
 }
 
+void LoopDetector::removeKeyFrame(long id) {
+  if (keyframes_.erase(id) > 0) database_.remove(id);
+}
+
 void LoopDetector::setCovisibility(long id, std::map<long, int> covisibility) {
   auto it = keyframes_.find(id);
   if (it == keyframes_.end())

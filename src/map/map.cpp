@@ -87,6 +87,78 @@ size_t Map::removeBadPoints() {
   return before - points_.size();
 }
 
+void Map::erasePoint(const std::shared_ptr<MapPoint>& point) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  erasePointLocked(*point);
+}
+
+void Map::erasePointLocked(MapPoint& point) {
+  const auto observers = point.observers;
+  for (const auto& o : observers)
+    if (o.keyframe->map_points[o.index].get() == &point)
+      removeObservationLocked(*o.keyframe, o.index);
+  point.observers.clear();
+  point.bad = true;
+}
+
+bool Map::eraseKeyFrame(const std::shared_ptr<KeyFrame>& keyframe, int min_point_observers) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = std::find(keyframes_.begin(), keyframes_.end(), keyframe);
+  if (it == keyframes_.end() || it == keyframes_.begin() || !keyframe->parent) return false;
+  unlinkLandmarksLocked(*keyframe, min_point_observers);
+  reparentChildrenLocked(*keyframe);
+  keyframes_.erase(it);
+  keyframe->parent = nullptr;
+  keyframe->bad = true;
+  return true;
+}
+
+void Map::unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers) {
+  for (size_t i = 0; i < keyframe.map_points.size(); ++i) {
+    const auto point = keyframe.map_points[i];
+    if (!point) continue;
+    removeObservationLocked(keyframe, i);
+    if (!point->bad && point->observations() < min_point_observers) erasePointLocked(*point);
+  }
+  for (auto& line : keyframe.map_lines) {
+    if (line && --line->observations <= 0) line->bad = true;
+    line = nullptr;
+  }
+  // Every link came from a shared point and is gone by now; this only guards the invariant.
+  for (const auto& [other, shared] : keyframe.covisibility) other->covisibility.erase(&keyframe);
+  keyframe.covisibility.clear();
+}
+
+// The children go to the keyframe they share the most landmarks with among the erased one's
+// parent and the children already moved (ORB-SLAM's rule): the tree's edges become pose-graph
+// edges and are best where many landmarks tie the two poses. None of those candidates lies
+// below a child still waiting, so no cycle can form; a child sharing nothing with any of them
+// goes to the erased keyframe's parent, which keeps the tree rooted at the first keyframe.
+void Map::reparentChildrenLocked(KeyFrame& keyframe) {
+  std::vector<KeyFrame*> children;  // in id order: keyframes_ is
+  for (const auto& kf : keyframes_)
+    if (kf->parent == &keyframe) children.push_back(kf.get());
+  std::vector<KeyFrame*> candidates{keyframe.parent};
+  while (!children.empty()) {
+    int best = 0;
+    size_t best_child = 0;
+    KeyFrame* best_parent = nullptr;
+    for (size_t c = 0; c < children.size(); ++c)
+      for (KeyFrame* candidate : candidates) {
+        const auto link = children[c]->covisibility.find(candidate);
+        if (link == children[c]->covisibility.end() || link->second <= best) continue;
+        best = link->second;
+        best_child = c;
+        best_parent = candidate;
+      }
+    if (!best_parent) break;
+    children[best_child]->parent = best_parent;
+    candidates.push_back(children[best_child]);
+    children.erase(children.begin() + static_cast<long>(best_child));
+  }
+  for (KeyFrame* child : children) child->parent = keyframe.parent;
+}
+
 std::vector<std::shared_ptr<KeyFrame>> Map::keyFrames() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return keyframes_;

@@ -21,11 +21,21 @@ KeyFrame* Mapper::spanningTreeParent(const KeyFrame& keyframe) const {
   return keyframes.size() >= 2 ? keyframes[keyframes.size() - 2].get() : nullptr;
 }
 
-LocalBundleAdjustmentStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
-  if (keyframe->id == 0) return {};  // nothing to adjust against yet
-  fuser_.fuse(map_, *keyframe, keyframe->bestCovisible(config_.tracking.local_map_keyframes));
+KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe,
+                                              const std::set<long>& keep) {
+  KeyFrameInsertionStats stats;
+  if (keyframe->id == 0) return stats;  // nothing to adjust against yet
+  const std::vector<KeyFrame*> neighbours =
+      keyframe->bestCovisible(config_.tracking.local_map_keyframes);
+  fuser_.fuse(map_, *keyframe, neighbours);
   keyframe->parent = spanningTreeParent(*keyframe);
-  const LocalBundleAdjustmentStats stats = bundle_adjuster_.adjust(map_, *keyframe);
+  stats.bundle_adjustment = bundle_adjuster_.adjust(map_, *keyframe);
+  // Fusion and adjustment changed who sees what: the neighbourhood is taken again.
+  stats.culled_points = point_culler_.cull(
+      map_, *keyframe, keyframe->bestCovisible(config_.tracking.local_map_keyframes));
+  stats.culled_keyframes = keyframe_culler_.cull(map_, *keyframe, keep);
+  if (loop_closer_)
+    for (long id : stats.culled_keyframes) loop_closer_->removeKeyFrame(id);
   map_.removeBadPoints();
   return stats;
 }

@@ -1,7 +1,9 @@
 #include "ply_slam/system/system.h"
 
+#include <algorithm>
 #include <cmath>
 #include <future>
+#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
@@ -125,7 +127,11 @@ void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
                  FrameResult& result) {
   Stopwatch mapping;
   KeyFrame& keyframe = *result.tracking.new_keyframe;
-  mapper_.insertKeyFrame(result.tracking.new_keyframe);
+  const KeyFrameInsertionStats mapped =
+      mapper_.insertKeyFrame(result.tracking.new_keyframe, {tracker_.referenceKeyFrame()->id});
+  result.culled_keyframes = mapped.culled_keyframes;
+  result.culled_points = mapped.culled_points;
+  if (!mapped.culled_keyframes.empty()) reanchorTrackedFrames();
   result.keyframe_packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
       keyframe, config_.camera, images, judged, result.dynamic_instances, result.dynamic_mask));
   if (auto correction = mapper_.closeLoop(keyframe, *result.keyframe_packet)) {
@@ -159,6 +165,21 @@ void System::markInliers(const Frame& frame, std::vector<FeatureMark>& marks) {
     if (mark.fate != FeatureFate::kKept) continue;
     mark.inlier = k < frame.map_points.size() && frame.map_points[k] && !frame.outlier[k];
     ++k;
+  }
+}
+
+void System::reanchorTrackedFrames() {
+  const auto keyframes = map_.keyFrames();  // in id order, the first never culled
+  for (TrackedFrame& f : tracked_) {
+    if (!f.reference->bad) continue;
+    // Culled just now, so its pose still agrees with the map's: hang the frame on the live
+    // keyframe made just before it (the same stretch of the trajectory).
+    const long id = f.reference->id;
+    auto next = std::lower_bound(keyframes.begin(), keyframes.end(), id,
+                                 [](const auto& kf, long v) { return kf->id < v; });
+    const std::shared_ptr<KeyFrame>& anchor = *std::prev(next);
+    f.T_reference_camera = anchor->T_cw * f.reference->T_wc() * f.T_reference_camera;
+    f.reference = anchor;
   }
 }
 

@@ -6,6 +6,7 @@
 // trajectory.png into DIR, and with dense.enabled the dense maps (dense_map.pcd/.ply,
 // semantic_octree.ot, octree.bt, map_legend.txt, map_top.png).
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -142,6 +143,14 @@ double peakRssMb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// Resident memory now (MB), from /proc/self/statm; 0 where that does not exist.
+double currentRssMb() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  if (!(statm >> pages >> resident)) return 0.0;
+  return resident * (sysconf(_SC_PAGESIZE) / 1024.0) / 1024.0;
 }
 
 std::string jsonEscape(const std::string& text) {
@@ -311,11 +320,11 @@ int run(const Options& options) {
   std::ofstream timing(out / "timing.csv");
   timing
       << "frame,stamp,state,method,inliers,line_inliers,keyframe,features_ms,lines_ms,tracking_ms,"
-         "mapping_ms,total_ms\n";
+         "mapping_ms,total_ms,rss_mb,keyframes,map_points\n";
   std::vector<double> total_ms, lines_ms;
   double line_inliers = 0.0;
   size_t dynamic_features = 0;
-  long frames = 0, lost = 0;
+  long frames = 0, lost = 0, keyframes_created = 0, keyframes_culled = 0, points_culled = 0;
   const size_t n = options.max_frames >= 0
                        ? std::min(sequence.size(), static_cast<size_t>(options.max_frames))
                        : sequence.size();
@@ -350,6 +359,7 @@ int run(const Options& options) {
               ? walkerPixels(instances, images.rgb.size(), config.dynamic)
               : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
       if (walker_masks) classification.add(r.features, walkers);
+      if (dense) dense->erase(r.culled_keyframes);
       if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
       if (dense && r.loop_correction) dense->push(r.loop_correction->update);
       if (r.loop_correction) corrections.push_back(r.loop_correction);
@@ -364,6 +374,9 @@ int run(const Options& options) {
     }
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
+    keyframes_created += r.tracking.new_keyframe != nullptr;
+    keyframes_culled += static_cast<long>(r.culled_keyframes.size());
+    points_culled += r.culled_points;
     total_ms.push_back(r.timing.total_ms);
     lines_ms.push_back(r.timing.lines_ms);
     line_inliers += r.tracking.line_inliers;
@@ -372,8 +385,9 @@ int run(const Options& options) {
            << toString(r.tracking.state) << ',' << r.tracking.method << ',' << r.tracking.inliers
            << ',' << r.tracking.line_inliers << ',' << (r.tracking.new_keyframe != nullptr) << ','
            << std::setprecision(3) << r.timing.features_ms << ',' << r.timing.lines_ms << ','
-           << r.timing.tracking_ms << ',' << r.timing.mapping_ms << ',' << r.timing.total_ms
-           << '\n';
+           << r.timing.tracking_ms << ',' << r.timing.mapping_ms << ',' << r.timing.total_ms << ','
+           << std::setprecision(1) << currentRssMb() << ',' << system.map().numKeyFrames() << ','
+           << system.map().numMapPoints() << '\n';
   }
 
   writeTumTrajectory((out / "CameraTrajectory.txt").string(), system.cameraTrajectory());
@@ -384,7 +398,10 @@ int run(const Options& options) {
        << "\",\n  \"config\": \"" << jsonEscape(options.config) << "\",\n"
        << "  \"frames\": " << frames << ",\n  \"tracked\": " << system.cameraTrajectory().size()
        << ",\n  \"lost\": " << lost << ",\n  \"keyframes\": " << system.map().numKeyFrames()
-       << ",\n  \"map_points\": " << system.map().numMapPoints() << ",\n"
+       << ",\n  \"keyframes_created\": " << keyframes_created
+       << ",\n  \"keyframes_culled\": " << keyframes_culled
+       << ",\n  \"map_points\": " << system.map().numMapPoints()
+       << ",\n  \"map_points_culled\": " << points_culled << ",\n"
        << "  \"segmenter\": \"" << options.segmenter << "\",\n"
        << "  \"dynamic_mode\": \"" << config.dynamic.mode << "\",\n"
        << "  \"dynamic_features_dropped\": " << dynamic_features << ",\n"

@@ -441,9 +441,7 @@ void Tracker::updatePointStatistics(Frame& frame) {
     }
     ++l->found;
   }
-  // Landmarks that are in view but rarely matched are unreliable: retire them.
-  for (const auto& p : local_points_)
-    if (p->visible >= 10 && p->foundRatio() < 0.25) p->bad = true;
+  // The mapping side retires the points these counts show unreliable (MapPointCuller).
 }
 
 void Tracker::fuseLineFits(const Frame& frame) {

@@ -19,6 +19,9 @@ class DenseMap {
 
   // Adds a keyframe's cloud, or replaces the one of the same id.
   void insert(KeyFrameCloud cloud);
+  // Drops the clouds of keyframes the sparse map erased (culled); unknown ids are ignored.
+  // Returns how many were dropped.
+  size_t erase(const std::vector<long>& ids);
   // Takes the corrected poses of known keyframes; returns the ids whose pose changed (by more
   // than 1e-6 m or rad), whose clouds will be re-placed. Unknown ids are ignored.
   std::vector<long> applyUpdate(const MapUpdate& update);

@@ -30,6 +30,10 @@ class DenseMappingWorker {
   void push(std::shared_ptr<const KeyFramePacket> packet, cv::Mat tag_mask = cv::Mat());
   // Queues pose corrections: changed keyframes are re-placed and the octree rebuilt.
   void push(const MapUpdate& update);
+  // Queues the erasure of keyframes the sparse map culled: their clouds leave the dense map
+  // (the keyframes that made them redundant see the same space). The octree keeps what they
+  // added until it is rebuilt from the remaining clouds after a pose correction.
+  void erase(std::vector<long> keyframe_ids);
   // Processes everything queued, then stops the thread. Idempotent.
   void finish();
 
@@ -50,6 +54,7 @@ class DenseMappingWorker {
     std::shared_ptr<const KeyFramePacket> packet;
     cv::Mat tag_mask;
     std::shared_ptr<const MapUpdate> update;
+    std::vector<long> erased;  // keyframe ids
   };
   void run();
   void process(const Job& job);

@@ -86,6 +86,9 @@ class LoopDetector {
   // Adds (or replaces) a keyframe. Throws std::invalid_argument when the keypoints or depths do
   // not match the ORB rows.
   void addKeyFrame(LoopKeyFrame keyframe);
+  // Forgets a keyframe (culled from the map): it is no candidate of any later query, nor
+  // a reference. Unknown ids are ignored.
+  void removeKeyFrame(long id);
   // Covisibility grows as later keyframes see the same landmarks: replace it.
   void setCovisibility(long id, std::map<long, int> covisibility);
   size_t size() const { return keyframes_.size(); }

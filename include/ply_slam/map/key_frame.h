@@ -24,6 +24,7 @@ struct KeyFrame {
   // Spanning tree (the pose graph's backbone): the keyframe this one shared the most landmarks
   // with when it joined the map; null for the first. Set by the mapping side.
   KeyFrame* parent = nullptr;
+  bool bad = false;  // erased from the map (culled); holds no links to other keyframes
 
   Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }
   int trackedPoints(int min_observations = 1) const;

@@ -34,6 +34,16 @@ class Map {
   size_t applyUpdate(const MapUpdate& update);
   // Drops points marked bad from the container (keyframes keep null-safe shared_ptrs).
   size_t removeBadPoints();
+  // Turns a point bad and unlinks it from every keyframe that saw it, so that covisibility
+  // counts only landmarks in use.
+  void erasePoint(const std::shared_ptr<MapPoint>& point);
+  // Removes a keyframe (a redundant one): unlinks its point and line observations and with them
+  // its covisibility links both ways, hands its spanning-tree children to new parents (see
+  // reparentChildren), takes it out of the container and marks it bad; it keeps its features
+  // for whoever still holds it. Points left with fewer than `min_point_observers` keyframes and
+  // lines left with none turn bad. Returns false, changing nothing, for the tree's root (the
+  // first keyframe) or a keyframe not in the map.
+  bool eraseKeyFrame(const std::shared_ptr<KeyFrame>& keyframe, int min_point_observers);
 
   std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;
@@ -46,6 +56,9 @@ class Map {
   void addObservationLocked(KeyFrame& keyframe, size_t index,
                             const std::shared_ptr<MapPoint>& point);
   void removeObservationLocked(KeyFrame& keyframe, size_t index);
+  void erasePointLocked(MapPoint& point);
+  void unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers);
+  void reparentChildrenLocked(KeyFrame& keyframe);
 
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<KeyFrame>> keyframes_;

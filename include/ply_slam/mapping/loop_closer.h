@@ -30,6 +30,8 @@ class LoopCloser {
   // After the keyframe was fused and adjusted: database, query, correction. Returns the
   // correction when a loop was closed.
   std::optional<LoopCorrection> addKeyFrame(KeyFrame& keyframe, const KeyFramePacket& packet);
+  // A keyframe the mapper culled leaves the database.
+  void removeKeyFrame(long id) { detector_.removeKeyFrame(id); }
   // Relocalisation: keyframes that look like the descriptors, most similar first.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const {
     return detector_.recognise(orb_descriptors, max_results);

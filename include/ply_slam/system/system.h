@@ -49,6 +49,9 @@ struct FrameResult {
   std::set<int> dynamic_instances;   // ids of the instances judged moving
   std::set<int> measured_instances;  // those of them this frame's own evidence found moving
   cv::Mat dynamic_mask;              // their dilated union (8UC1), empty when none
+  // The mapping side's culling after this frame's keyframe: keyframe ids erased, points retired.
+  std::vector<long> culled_keyframes;
+  int culled_points = 0;
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
   // Set when the keyframe closed a loop: what moved (keyframes and landmarks; the dense maps
@@ -94,6 +97,8 @@ class System {
   // The mapping side, in line so that offline runs are reproducible: map upkeep, the packet,
   // then the loop query (which needs the packet's images).
   void map(const RgbdImages& images, const std::vector<Instance>& judged, FrameResult& result);
+  // Tracked frames whose reference keyframe was culled move to a live one, where they are.
+  void reanchorTrackedFrames();
 
   // A tracked frame: where it was relative to its reference keyframe.
   struct TrackedFrame {

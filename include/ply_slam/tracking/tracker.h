@@ -44,10 +44,11 @@ class Tracker {
   // corrected map.
   void applyCorrection(const Eigen::Isometry3d& world_correction);
   TrackingState state() const { return state_; }
-  // The keyframe the current pose is tracked from (the newest); null before initialisation.
-  std::shared_ptr<const KeyFrame> referenceKeyFrame() const { return last_keyframe_; }
   // The camera's current velocity, null when unknown (start, after a loss).
   const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
+  // The keyframe tracking refers to (the newest, or the one relocalised against); null before
+  // initialisation. The mapping side must not cull it.
+  const std::shared_ptr<KeyFrame>& referenceKeyFrame() const { return last_keyframe_; }
 
  private:
   bool initialise(Frame& frame);

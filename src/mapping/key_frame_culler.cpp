@@ -1,0 +1,47 @@
+#include "ply_slam/mapping/key_frame_culler.h"
+
+#include <unordered_map>
+
+namespace ply_slam {
+
+std::vector<long> KeyFrameCuller::cull(Map& map, const KeyFrame& newest,
+                                       const std::set<long>& keep) const {
+  // The map's own shared_ptrs: erasing needs them, and the covisibility holds raw pointers.
+  std::unordered_map<const KeyFrame*, std::shared_ptr<KeyFrame>> owned;
+  for (const auto& kf : map.keyFrames()) owned[kf.get()] = kf;
+  std::vector<long> erased;
+  for (KeyFrame* kf : newest.bestCovisible(newest.covisibility.size())) {
+    if (kf == &newest || keep.count(kf->id) || !redundant(*kf)) continue;
+    const auto it = owned.find(kf);
+    if (it == owned.end()) continue;
+    const long id = kf->id;
+    if (map.eraseKeyFrame(it->second, options_.min_point_observers)) erased.push_back(id);
+  }
+  return erased;
+}
+
+bool KeyFrameCuller::redundant(const KeyFrame& keyframe) const {
+  int points = 0, redundant_points = 0;
+  for (size_t i = 0; i < keyframe.map_points.size(); ++i) {
+    const auto& p = keyframe.map_points[i];
+    if (!p || p->bad) continue;
+    ++points;
+    if (seenByOthers(keyframe, i)) ++redundant_points;
+  }
+  return points > 0 && redundant_points > options_.redundancy * points;
+}
+
+bool KeyFrameCuller::seenByOthers(const KeyFrame& keyframe, size_t index) const {
+  const MapPoint& point = *keyframe.map_points[index];
+  if (point.observations() <= options_.min_observers) return false;  // not enough others
+  const int level = keyframe.features.level(index);
+  int others = 0;
+  for (const auto& o : point.observers) {
+    if (o.keyframe == &keyframe) continue;
+    if (o.keyframe->features.level(o.index) > level + options_.level_slack) continue;
+    if (++others >= options_.min_observers) return true;
+  }
+  return false;
+}
+
+}  // namespace ply_slam
