@@ -27,6 +27,15 @@ const KeyFrame* referenceOf(const MapPoint& point, const KeyFrameIndex& index) {
   return nullptr;
 }
 
+// Covisibility is keyed by address: walked in id order, so that a run repeats itself whatever the
+// heap's layout.
+std::vector<std::pair<KeyFrame*, int>> byId(const std::map<KeyFrame*, int>& covisibility) {
+  std::vector<std::pair<KeyFrame*, int>> links(covisibility.begin(), covisibility.end());
+  std::sort(links.begin(), links.end(),
+            [](const auto& a, const auto& b) { return a.first->id < b.first->id; });
+  return links;
+}
+
 Eigen::Isometry3d relative(const Eigen::Isometry3d& T_w_from, const Eigen::Isometry3d& T_w_to) {
   return T_w_from.inverse() * T_w_to;
 }
@@ -71,7 +80,7 @@ LoopCorrector::Poses LoopCorrector::posesOf(
 std::vector<KeyFrame*> LoopCorrector::moveCurrentSide(KeyFrame& query,
                                                       const Eigen::Isometry3d& correction) {
   std::vector<KeyFrame*> side{&query};
-  for (const auto& [kf, shared] : query.covisibility) side.push_back(kf);
+  for (const auto& [kf, shared] : byId(query.covisibility)) side.push_back(kf);
   for (KeyFrame* kf : side) kf->T_cw = (correction * kf->T_wc()).inverse();
   return side;
 }
@@ -93,7 +102,7 @@ std::vector<std::pair<KeyFrame*, KeyFrame*>> LoopCorrector::fuseAcrossLoop(
   // Links the fusion created between the two sides: the loop's own pose-graph edges.
   std::vector<std::pair<KeyFrame*, KeyFrame*>> links;
   for (KeyFrame* kf : current_side)
-    for (const auto& [other, shared] : kf->covisibility)
+    for (const auto& [other, shared] : byId(kf->covisibility))
       if (old.count(other) && !linked_before[kf].count(other)) links.emplace_back(kf, other);
   return links;
 }
@@ -126,7 +135,7 @@ PoseGraph LoopCorrector::essentialGraph(
   for (const auto& kf : keyframes) {
     if (kf->parent && index.count(kf->parent->id))
       add(kf->parent, kf.get(), relative(before.at(kf->parent), before.at(kf.get())));
-    for (const auto& [other, shared] : kf->covisibility) {
+    for (const auto& [other, shared] : byId(kf->covisibility)) {
       if (shared < options_.strong_covisibility || !before.count(other)) continue;
       add(other, kf.get(), relative(before.at(other), before.at(kf.get())));
     }
