@@ -117,7 +117,7 @@ TEST(EraseKeyFrame, UnlinksEverythingAndKeepsTheTreeRooted) {
   h.keyframes_[1]->map_lines[0] = line;
   ASSERT_EQ(h.keyframes_[2]->covisibility.at(h.keyframes_[1].get()), 4);
 
-  ASSERT_TRUE(h.map_.eraseKeyFrame(h.keyframes_[1], 2));
+  ASSERT_TRUE(h.map_.eraseKeyFrame(*h.keyframes_[1], 2));
   EXPECT_EQ(h.map_.numKeyFrames(), 4u);
   EXPECT_TRUE(h.keyframes_[1]->bad);
   EXPECT_TRUE(h.keyframes_[1]->covisibility.empty());
@@ -145,7 +145,7 @@ TEST(EraseKeyFrame, AChildSharingNothingGoesToTheGrandparent) {
   h.see(0, 0, 2);
   h.see(1, 0, 4);
   h.see(2, 2, 4);
-  ASSERT_TRUE(h.map_.eraseKeyFrame(h.keyframes_[1], 1));
+  ASSERT_TRUE(h.map_.eraseKeyFrame(*h.keyframes_[1], 1));
   EXPECT_EQ(h.keyframes_[2]->parent, h.keyframes_[0].get());
   expectConsistent(h.map_);
 }
@@ -155,10 +155,10 @@ TEST(EraseKeyFrame, RefusesTheFirstKeyFrameAndStrangers) {
   h.addChain(2);
   h.see(0, 0, 2);
   h.see(1, 0, 2);
-  EXPECT_FALSE(h.map_.eraseKeyFrame(h.keyframes_[0], 2));
+  EXPECT_FALSE(h.map_.eraseKeyFrame(*h.keyframes_[0], 2));
   auto stranger = std::make_shared<KeyFrame>();
   stranger->parent = h.keyframes_[0].get();
-  EXPECT_FALSE(h.map_.eraseKeyFrame(stranger, 2));
+  EXPECT_FALSE(h.map_.eraseKeyFrame(*stranger, 2));
   EXPECT_EQ(h.map_.numKeyFrames(), 2u);
   EXPECT_EQ(h.keyframes_[0]->covisibility.at(h.keyframes_[1].get()), 2);
 }

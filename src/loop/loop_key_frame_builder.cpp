@@ -22,18 +22,6 @@ cv::Mat keptRows(const cv::Mat& rows, const std::vector<bool>& keep) {
   return out;
 }
 
-// Box of each labelled instance (any class: S_inst drops the moving ones itself).
-std::vector<InstanceBox> boxesOfLabels(const KeyFramePacket& packet) {
-  std::vector<InstanceBox> boxes;
-  if (packet.label_image.empty()) return boxes;
-  for (const PacketInstance& instance : packet.instances) {
-    const cv::Mat pixels = packet.label_image == instance.id;
-    const cv::Rect box = cv::boundingRect(pixels);
-    if (box.area() > 0) boxes.push_back({instance.class_name, cv::Rect2d(box)});
-  }
-  return boxes;
-}
-
 }  // namespace
 
 LoopKeyFrameBuilder::LoopKeyFrameBuilder(const LineParams& lines, const PinholeCamera& camera,
@@ -48,7 +36,8 @@ LoopKeyFrame LoopKeyFrameBuilder::build(const KeyFramePacket& packet) const {
   LoopKeyFrame kf;
   kf.id = packet.id;
   kf.stamp = packet.stamp;
-  const cv::Mat movers = moverMask(packet);
+  cv::Mat movers;
+  readLabels(packet, kf.instances, movers);
   std::vector<bool> keep(packet.keypoints.size());
   for (size_t i = 0; i < keep.size(); ++i) {
     keep[i] = !onMask(movers, packet.keypoints[i]);
@@ -58,25 +47,28 @@ LoopKeyFrame LoopKeyFrameBuilder::build(const KeyFramePacket& packet) const {
   }
   kf.orb_descriptors = keptRows(packet.descriptors, keep);
   kf.lbd_descriptors = describeLines(packet.rgb, movers);
-  kf.instances = boxesOfLabels(packet);
   return kf;
 }
 
-cv::Mat LoopKeyFrameBuilder::moverMask(const KeyFramePacket& packet) const {
-  cv::Mat mask;
-  if (packet.label_image.empty()) return mask;
+void LoopKeyFrameBuilder::readLabels(const KeyFramePacket& packet, std::vector<InstanceBox>& boxes,
+                                     cv::Mat& movers) const {
+  if (packet.label_image.empty()) return;
   for (const PacketInstance& instance : packet.instances) {
+    const cv::Mat pixels = packet.label_image == instance.id;  // one pass per instance
+    const cv::Rect box = cv::boundingRect(pixels);
+    if (box.area() == 0) continue;
+    // Every class gets a box (S_inst drops the moving ones itself).
+    boxes.push_back({instance.class_name, cv::Rect2d(box)});
     if (std::find(mover_classes_.begin(), mover_classes_.end(), instance.class_name) ==
         mover_classes_.end())
       continue;
-    if (mask.empty()) mask = cv::Mat::zeros(packet.label_image.size(), CV_8UC1);
-    mask.setTo(255, packet.label_image == instance.id);
+    if (movers.empty()) movers = cv::Mat::zeros(packet.label_image.size(), CV_8UC1);
+    movers.setTo(255, pixels);
   }
-  if (!mask.empty() && mask_dilation_px_ > 0) {
+  if (!movers.empty() && mask_dilation_px_ > 0) {
     const int size = 2 * mask_dilation_px_ + 1;
-    cv::dilate(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(size, size)));
+    cv::dilate(movers, movers, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(size, size)));
   }
-  return mask;
 }
 
 cv::Mat LoopKeyFrameBuilder::describeLines(const cv::Mat& rgb, const cv::Mat& movers) const {

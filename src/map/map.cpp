@@ -101,15 +101,16 @@ void Map::erasePointLocked(MapPoint& point) {
   point.bad = true;
 }
 
-bool Map::eraseKeyFrame(const std::shared_ptr<KeyFrame>& keyframe, int min_point_observers) {
+bool Map::eraseKeyFrame(KeyFrame& keyframe, int min_point_observers) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto it = std::find(keyframes_.begin(), keyframes_.end(), keyframe);
-  if (it == keyframes_.end() || it == keyframes_.begin() || !keyframe->parent) return false;
-  unlinkLandmarksLocked(*keyframe, min_point_observers);
-  reparentChildrenLocked(*keyframe);
+  const auto it = std::find_if(keyframes_.begin(), keyframes_.end(),
+                               [&](const auto& kf) { return kf.get() == &keyframe; });
+  if (it == keyframes_.end() || it == keyframes_.begin() || !keyframe.parent) return false;
+  unlinkLandmarksLocked(keyframe, min_point_observers);
+  reparentChildrenLocked(keyframe);
   keyframes_.erase(it);
-  keyframe->parent = nullptr;
-  keyframe->bad = true;
+  keyframe.parent = nullptr;
+  keyframe.bad = true;
   return true;
 }
 

@@ -1,21 +1,13 @@
 #include "ply_slam/mapping/key_frame_culler.h"
 
-#include <unordered_map>
-
 namespace ply_slam {
 
 std::vector<long> KeyFrameCuller::cull(Map& map, const KeyFrame& newest,
                                        const std::set<long>& keep) const {
-  // The map's own shared_ptrs: erasing needs them, and the covisibility holds raw pointers.
-  std::unordered_map<const KeyFrame*, std::shared_ptr<KeyFrame>> owned;
-  for (const auto& kf : map.keyFrames()) owned[kf.get()] = kf;
   std::vector<long> erased;
   for (KeyFrame* kf : newest.bestCovisible(newest.covisibility.size())) {
     if (kf == &newest || keep.count(kf->id) || !redundant(*kf)) continue;
-    const auto it = owned.find(kf);
-    if (it == owned.end()) continue;
-    const long id = kf->id;
-    if (map.eraseKeyFrame(it->second, options_.min_point_observers)) erased.push_back(id);
+    if (map.eraseKeyFrame(*kf, options_.min_point_observers)) erased.push_back(kf->id);
   }
   return erased;
 }

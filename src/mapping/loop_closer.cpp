@@ -21,9 +21,7 @@ LoopCloser::LoopCloser(LoopDetector detector, const SystemConfig& config,
 
 std::optional<LoopCorrection> LoopCloser::addKeyFrame(KeyFrame& keyframe,
                                                       const KeyFramePacket& packet) {
-  LoopKeyFrame place = builder_.build(packet);
-  place.covisibility = covisibilityById(keyframe);
-  detector_.addKeyFrame(std::move(place));
+  detector_.addKeyFrame(builder_.build(packet));
   syncCovisibility(keyframe);
   if (last_loop_keyframe_ >= 0 &&
       keyframe.id - last_loop_keyframe_ <= options_.min_keyframes_between)
@@ -36,16 +34,15 @@ std::optional<LoopCorrection> LoopCloser::addKeyFrame(KeyFrame& keyframe,
   KeyFrame* candidate = keyFrame(*detection.loop);
   if (!candidate) return std::nullopt;  // culled since it joined the database
   const Eigen::Isometry3d& T_query_candidate = detection.geometry->T_query_candidate;
-  if (!plausible(keyframe, *candidate, T_query_candidate)) {
+  if (!plausible(keyframe, *candidate, loopShift(keyframe, *candidate, T_query_candidate))) {
     ++counts_.implausible;
     return std::nullopt;
   }
   LoopCorrection correction = corrector_.correct(keyframe, *candidate, T_query_candidate);
   last_loop_keyframe_ = keyframe.id;
   ++counts_.corrected;
-  counts_.pose_graph_ms += correction.pose_graph.ms;
   // The fusion linked the two sides: they are no loop candidates of each other any more.
-  for (KeyFrame* kf : keyframe.bestCovisible(keyframe.covisibility.size())) syncCovisibility(*kf);
+  for (const auto& [kf, shared] : keyframe.covisibility) syncCovisibility(*kf);
   return correction;
 }
 
@@ -61,7 +58,7 @@ void LoopCloser::syncCovisibility(const KeyFrame& keyframe) {
 }
 
 bool LoopCloser::plausible(const KeyFrame& query, const KeyFrame& candidate,
-                           const Eigen::Isometry3d& T_query_candidate) const {
+                           const LoopShift& shift) const {
   // The path walked: keyframe centres from the candidate's to the query's, in order.
   double path_m = 0.0;
   const KeyFrame* previous = nullptr;
@@ -70,12 +67,8 @@ bool LoopCloser::plausible(const KeyFrame& query, const KeyFrame& candidate,
     if (previous) path_m += (kf->T_wc().translation() - previous->T_wc().translation()).norm();
     previous = kf.get();
   }
-  const Eigen::Isometry3d after = candidate.T_wc() * T_query_candidate.inverse();
-  const double moved_m = (after.translation() - query.T_wc().translation()).norm();
-  const double turned_deg =
-      Eigen::AngleAxisd(after.linear() * query.T_cw.linear()).angle() * 180.0 / M_PI;
-  return moved_m <= options_.max_drift_floor_m + options_.max_drift_fraction * path_m &&
-         turned_deg <=
+  return shift.moved_m <= options_.max_drift_floor_m + options_.max_drift_fraction * path_m &&
+         shift.turned_deg <=
              options_.max_rotation_drift_floor_deg + options_.max_rotation_drift_deg_per_m * path_m;
 }
 

@@ -42,6 +42,16 @@ Eigen::Isometry3d relative(const Eigen::Isometry3d& T_w_from, const Eigen::Isome
 
 }  // namespace
 
+LoopShift loopShift(const KeyFrame& query, const KeyFrame& candidate,
+                    const Eigen::Isometry3d& T_query_candidate) {
+  LoopShift shift;
+  shift.query_T_wc = candidate.T_wc() * T_query_candidate.inverse();
+  shift.moved_m = (shift.query_T_wc.translation() - query.T_wc().translation()).norm();
+  shift.turned_deg =
+      Eigen::AngleAxisd(shift.query_T_wc.linear() * query.T_cw.linear()).angle() * 180.0 / M_PI;
+  return shift;
+}
+
 LoopCorrection LoopCorrector::correct(KeyFrame& query, KeyFrame& candidate,
                                       const Eigen::Isometry3d& T_query_candidate) {
   Stopwatch watch;
@@ -49,13 +59,10 @@ LoopCorrection LoopCorrector::correct(KeyFrame& query, KeyFrame& candidate,
   correction.loop = {query.id, candidate.id, T_query_candidate};
   const auto keyframes = map_.keyFrames();
   const Poses before = posesOf(keyframes);
-  const Eigen::Isometry3d query_after = candidate.T_wc() * T_query_candidate.inverse();
-  correction.world_correction = query_after * query.T_wc().inverse();
-  correction.moved_m = (query_after.translation() - query.T_wc().translation()).norm();
-  correction.turned_deg =
-      Eigen::AngleAxisd(query_after.linear() * query.T_cw.linear()).angle() * 180.0 / M_PI;
+  correction.shift = loopShift(query, candidate, T_query_candidate);
+  const Eigen::Isometry3d rigid = correction.shift.query_T_wc * query.T_wc().inverse();
 
-  const std::vector<KeyFrame*> current_side = moveCurrentSide(query, correction.world_correction);
+  const std::vector<KeyFrame*> current_side = moveCurrentSide(query, rigid);
   correction.connected_keyframes = static_cast<int>(current_side.size());
   moveLandmarks(keyframes, before);
   const auto links = fuseAcrossLoop(current_side, candidate, &correction.fused);

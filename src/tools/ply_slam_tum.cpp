@@ -194,7 +194,8 @@ std::unique_ptr<MaskFolderSegmenter> groundTruthMasks(const Options& options,
 
 // Drains the worker, re-places keyframes at their final poses, writes the maps and
 // map_top.png; returns the summary.json fields.
-std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, const fs::path& out,
+std::string finishDenseMaps(DenseMappingWorker& dense, const System& system,
+                            const Trajectory& trajectory, const fs::path& out,
                             const std::string& title, bool counted_walkers) {
   MapUpdate final_poses;
   for (const auto& keyframe : system.map().keyFrames())
@@ -209,7 +210,6 @@ std::string finishDenseMaps(DenseMappingWorker& dense, const System& system, con
     const double global_ms = global_watch.elapsedMs();
     writeDenseMaps(out.string(), map, octree);
     const std::vector<SemanticOctree::Voxel> voxels = octree.occupiedVoxels();
-    const Trajectory trajectory = system.cameraTrajectory();
     TopViewRenderer().write((out / "map_top.png").string(), voxels, trajectory,
                             TopViewRenderer::upFromTrajectory(trajectory), octree.palette(),
                             title + "   semantic octree, top view");
@@ -257,19 +257,21 @@ std::string loopsJson(const System& system,
                       const std::vector<std::shared_ptr<const LoopCorrection>>& corrections) {
   const LoopClosureCounts* counts = system.loopCounts();
   if (!counts) return "null";
-  double global_ba_ms = 0.0;
-  for (const auto& c : corrections) global_ba_ms += c->global_ba_ms;
+  double pose_graph_ms = 0.0, global_ba_ms = 0.0;
+  for (const auto& c : corrections) {
+    pose_graph_ms += c->pose_graph.ms;
+    global_ba_ms += c->global_ba_ms;
+  }
   std::ostringstream json;
   json << "{\"queries\": " << counts->queries << ", \"detected\": " << counts->detected
        << ", \"accepted\": " << counts->accepted << ", \"implausible\": " << counts->implausible
-       << ", \"corrected\": " << counts->corrected
-       << ", \"pose_graph_ms\": " << counts->pose_graph_ms << ", \"global_ba_ms\": " << global_ba_ms
-       << ", \"corrections\": [";
+       << ", \"corrected\": " << counts->corrected << ", \"pose_graph_ms\": " << pose_graph_ms
+       << ", \"global_ba_ms\": " << global_ba_ms << ", \"corrections\": [";
   for (size_t i = 0; i < corrections.size(); ++i) {
     const LoopCorrection& c = *corrections[i];
     json << (i ? ", " : "") << "{\"query\": " << c.loop.query_id
-         << ", \"candidate\": " << c.loop.candidate_id
-         << ", \"moved_m\": " << c.moved_m << ", \"turned_deg\": " << c.turned_deg
+         << ", \"candidate\": " << c.loop.candidate_id << ", \"moved_m\": " << c.shift.moved_m
+         << ", \"turned_deg\": " << c.shift.turned_deg
          << ", \"connected\": " << c.connected_keyframes << ", \"fused\": " << c.fused
          << ", \"loop_links\": " << c.loop_links
          << ", \"pose_graph_iterations\": " << c.pose_graph.iterations
@@ -390,13 +392,15 @@ int run(const Options& options) {
            << system.map().numMapPoints() << '\n';
   }
 
-  writeTumTrajectory((out / "CameraTrajectory.txt").string(), system.cameraTrajectory());
+  // Derived from the keyframes' final poses: taken once.
+  const Trajectory trajectory = system.cameraTrajectory();
+  writeTumTrajectory((out / "CameraTrajectory.txt").string(), trajectory);
   writeTumTrajectory((out / "KeyFrameTrajectory.txt").string(), system.keyFrameTrajectory());
 
   std::ostringstream json;
   json << std::setprecision(6) << "{\n  \"sequence\": \"" << jsonEscape(sequence.folder())
        << "\",\n  \"config\": \"" << jsonEscape(options.config) << "\",\n"
-       << "  \"frames\": " << frames << ",\n  \"tracked\": " << system.cameraTrajectory().size()
+       << "  \"frames\": " << frames << ",\n  \"tracked\": " << trajectory.size()
        << ",\n  \"lost\": " << lost << ",\n  \"keyframes\": " << system.map().numKeyFrames()
        << ",\n  \"keyframes_created\": " << keyframes_created
        << ",\n  \"keyframes_culled\": " << keyframes_culled
@@ -428,10 +432,10 @@ int run(const Options& options) {
   json << ",\n  \"loops\": " << loopsJson(system, corrections);
 
   std::string title = "ply_slam  " + fs::path(sequence.folder()).filename().string();
-  Trajectory aligned = system.cameraTrajectory();
-  if (sequence.hasGroundTruth() && system.cameraTrajectory().size() >= 3) {
-    const AteResult ate = computeAte(sequence.groundTruth(), system.cameraTrajectory());
-    const RpeResult rpe = computeRpeFrames(sequence.groundTruth(), system.cameraTrajectory(), 1);
+  Trajectory aligned = trajectory;
+  if (sequence.hasGroundTruth() && trajectory.size() >= 3) {
+    const AteResult ate = computeAte(sequence.groundTruth(), trajectory);
+    const RpeResult rpe = computeRpeFrames(sequence.groundTruth(), trajectory, 1);
     json << ",\n  \"ate\": " << jsonStats(ate.translation)
          << ",\n  \"rpe_translation_per_frame\": " << jsonStats(rpe.translation)
          << ",\n  \"rpe_rotation_deg_per_frame\": " << jsonStats(rpe.rotation);
@@ -443,14 +447,15 @@ int run(const Options& options) {
               << " frames; RPE " << rpe.translation.rmse << " m, " << rpe.rotation.rmse
               << " deg per frame\n";
   }
-  if (dense) json << finishDenseMaps(*dense, system, out, title, walker_masks != nullptr);
+  if (dense)
+    json << finishDenseMaps(*dense, system, trajectory, out, title, walker_masks != nullptr);
   if (!failure.empty()) json << ",\n  \"error\": \"" << jsonEscape(failure) << "\"";
   json << "\n}\n";
   std::ofstream(out / "summary.json") << json.str();
   writeTrajectoryPlot((out / "trajectory.png").string(), sequence.groundTruth(), aligned, title);
 
-  std::cout << "frames " << frames << ", tracked " << system.cameraTrajectory().size() << ", lost "
-            << lost << ", keyframes " << system.map().numKeyFrames() << ", map points "
+  std::cout << "frames " << frames << ", tracked " << trajectory.size() << ", lost " << lost
+            << ", keyframes " << system.map().numKeyFrames() << ", map points "
             << system.map().numMapPoints() << "\n"
             << "tracking ms median " << percentile(total_ms, 0.5) << ", p95 "
             << percentile(total_ms, 0.95) << "\n"

@@ -21,8 +21,10 @@ class LoopKeyFrameBuilder {
   LoopKeyFrame build(const KeyFramePacket& packet) const;
 
  private:
-  // Pixels of the packet's instances of moving classes, dilated; empty when none.
-  cv::Mat moverMask(const KeyFramePacket& packet) const;
+  // The box of each labelled instance, and the pixels of those of moving classes, dilated
+  // (left empty when none).
+  void readLabels(const KeyFramePacket& packet, std::vector<InstanceBox>& boxes,
+                  cv::Mat& movers) const;
   // LBD descriptors of the image's lines whose middle is off the movers (empty: lines off).
   cv::Mat describeLines(const cv::Mat& rgb, const cv::Mat& movers) const;
 

@@ -43,7 +43,7 @@ class Map {
   // for whoever still holds it. Points left with fewer than `min_point_observers` keyframes and
   // lines left with none turn bad. Returns false, changing nothing, for the tree's root (the
   // first keyframe) or a keyframe not in the map.
-  bool eraseKeyFrame(const std::shared_ptr<KeyFrame>& keyframe, int min_point_observers);
+  bool eraseKeyFrame(KeyFrame& keyframe, int min_point_observers);
 
   std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;

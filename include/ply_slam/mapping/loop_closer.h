@@ -13,11 +13,10 @@ namespace ply_slam {
 
 struct LoopClosureCounts {
   long queries = 0;
-  long detected = 0;           // queries with a candidate consistent over loop.consistency queries
-  long accepted = 0;           // of them, a candidate passed the geometric check
-  long implausible = 0;        // accepted, but asking for more correction than drift explains
-  long corrected = 0;          // loops closed in the map
-  double pose_graph_ms = 0.0;  // summed over the corrections
+  long detected = 0;     // queries with a candidate consistent over loop.consistency queries
+  long accepted = 0;     // of them, a candidate passed the geometric check
+  long implausible = 0;  // accepted, but asking for more correction than drift explains
+  long corrected = 0;    // loops closed in the map
 };
 
 // The mapping side's place recognition: every keyframe goes into the database (points, lines,
@@ -42,10 +41,9 @@ class LoopCloser {
   // The detector's covisibility of the keyframe and its neighbours, from the map's.
   void syncCovisibility(const KeyFrame& keyframe);
   KeyFrame* keyFrame(long id) const;
-  // Whether the loop's correction of the query is within the drift the tracker could have
-  // gathered since the candidate (LoopCorrectionOptions).
-  bool plausible(const KeyFrame& query, const KeyFrame& candidate,
-                 const Eigen::Isometry3d& T_query_candidate) const;
+  // Whether the loop's shift of the query is within the drift the tracker could have gathered
+  // since the candidate (LoopCorrectionOptions).
+  bool plausible(const KeyFrame& query, const KeyFrame& candidate, const LoopShift& shift) const;
 
   LoopDetector detector_;
   LoopKeyFrameBuilder builder_;

@@ -19,14 +19,21 @@ struct LoopEdge {
   Eigen::Isometry3d T_query_candidate = Eigen::Isometry3d::Identity();
 };
 
+// Where a verified loop puts the query keyframe (T_wc), and how far that is from where tracking
+// had it: camera centre shift and rotation.
+struct LoopShift {
+  Eigen::Isometry3d query_T_wc = Eigen::Isometry3d::Identity();
+  double moved_m = 0.0, turned_deg = 0.0;
+};
+LoopShift loopShift(const KeyFrame& query, const KeyFrame& candidate,
+                    const Eigen::Isometry3d& T_query_candidate);
+
 struct LoopCorrection {
   LoopEdge loop;
   // How the current keyframe moved: T_wc(after) = world_correction * T_wc(before). The tracker
   // moves its own pose by the same.
   Eigen::Isometry3d world_correction = Eigen::Isometry3d::Identity();
-  // Where the loop put the current keyframe against where tracking had it: camera centre shift
-  // and rotation (before the pose graph spreads it).
-  double moved_m = 0.0, turned_deg = 0.0;
+  LoopShift shift;              // of the current keyframe, before the pose graph spreads it
   int connected_keyframes = 0;  // the current side, moved rigidly before the pose graph
   int fused = 0;                // observations added and landmarks merged across the loop
   int loop_links = 0;           // pose-graph edges across the loop
