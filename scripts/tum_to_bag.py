@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes a TUM RGB-D folder as a rosbag with the topics and encodings of the TUM site's bags.
 
-usage: tum_to_bag.py FOLDER OUT.bag [--d435i] [--config YAML] [--all-images]
+usage: tum_to_bag.py FOLDER OUT.bag [--d435i] [--config YAML] [--all-images] [--lz4]
 
   TUM layout (default): /camera/rgb/image_color (rgb8), /camera/depth/image (32FC1, metres,
   NaN = no depth), /camera/rgb/camera_info, frames /openni_rgb_optical_frame and
@@ -15,6 +15,7 @@ usage: tum_to_bag.py FOLDER OUT.bag [--d435i] [--config YAML] [--all-images]
   Frames: the pairs of associations.txt when the folder has one (the frames ply_slam_tum
   tracks), else every image of rgb.txt and depth.txt; --all-images: every image regardless,
   as in TUM's own bags.
+  --lz4: LZ4-compressed chunks (long sequences; rosbag play decompresses as it goes).
 
 Runs with the system Python (/usr/bin/python3: rosbag, python3-opencv, python3-numpy).
 """
@@ -113,6 +114,7 @@ def main():
     parser.add_argument("out")
     parser.add_argument("--d435i", action="store_true", help="D435i topic names, 16UC1 mm depth")
     parser.add_argument("--config", help="ply_slam YAML with the camera section")
+    parser.add_argument("--lz4", action="store_true", help="LZ4-compressed chunks")
     parser.add_argument("--all-images", action="store_true",
                         help="every image of rgb.txt and depth.txt, even without associations")
     args = parser.parse_args()
@@ -148,7 +150,8 @@ def main():
                      if first <= float(r[0]) <= last]
     messages.sort(key=lambda m: (float(m[0]), m[1]))
 
-    with rosbag.Bag(args.out, "w") as bag:
+    compression = rosbag.Compression.LZ4 if args.lz4 else rosbag.Compression.NONE
+    with rosbag.Bag(args.out, "w", compression=compression) as bag:
         for stamp_text, _, kind, payload in messages:
             stamp = parse_stamp(stamp_text)
             if kind == "rgb":

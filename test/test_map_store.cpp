@@ -1,6 +1,5 @@
-// The mapping side's map (MapStore), corrections applied to the tracker's Map
-// (Map::applyUpdate, what tracking_node does with ~map_update) and configs from YAML text
-// (what the nodes build from rosparam).
+// mapping_node's copy of the map (MapStore) and configs from YAML text (what the nodes build
+// from rosparam).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -64,7 +63,11 @@ TEST(MapStore, AppliesUpdates) {
   update.keyframes = {{1, moved}, {99, moved}};  // 99 is unknown: ignored
   update.points = {{11, {3, 3, 3}}};
   update.merged_points = {{10, 11}};
+  store.insert(packet(2, 3.0, 2.0));
+  update.erased_keyframes = {2, 98};  // 98 is unknown: ignored
   store.apply(update);
+  EXPECT_EQ(store.keyFrames().count(2), 0u);
+  EXPECT_EQ(store.keyFrames().size(), 2u);
   EXPECT_EQ(store.keyFrames().at(1).T_wc.translation(), Eigen::Vector3d(0, 5, 0));
   EXPECT_EQ(store.keyFrames().count(99), 0u);
   EXPECT_EQ(store.points().at(11).position, Eigen::Vector3d(3, 3, 3));
@@ -87,36 +90,6 @@ TEST(MapStore, SavesEverythingItHolds) {
   EXPECT_NE(readAll(dir / "keyframes.csv").find("person(dynamic)"), std::string::npos);
   std::filesystem::remove_all(dir);
   EXPECT_THROW(store.save("/proc/ply_slam_cannot_write_here"), std::exception);
-}
-
-TEST(MapApplyUpdate, MovesKeyFramesAndLandmarksAndMerges) {
-  Map map;
-  auto kf = map.addKeyFrame(std::make_shared<KeyFrame>());
-  kf->features.keypoints.resize(2);
-  kf->map_points.resize(2);
-  const cv::Mat descriptor = cv::Mat::zeros(1, 32, CV_8U);
-  auto a = map.createMapPoint({1, 0, 2}, descriptor, kf->id);
-  auto b = map.createMapPoint({1.01, 0, 2}, descriptor, kf->id);
-  map.addObservation(*kf, 0, a);
-  map.addObservation(*kf, 1, b);
-  auto line = map.createMapLine({0, 0, 1}, {1, 0, 1}, descriptor, kf->id);
-
-  MapUpdate update;
-  Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
-  T_wc.translation() = Eigen::Vector3d(0.5, 0, 0);
-  update.keyframes = {{kf->id, T_wc}, {1234, T_wc}};
-  update.points = {{a->id, {1, 0.1, 2}}};
-  update.lines = {{line->id, {0, 0, 2}, {1, 0, 2}}};
-  update.merged_points = {{b->id, a->id}};
-  EXPECT_EQ(map.applyUpdate(update), 4u);  // the unknown keyframe is skipped
-  EXPECT_NEAR((kf->T_wc().translation() - T_wc.translation()).norm(), 0.0, 1e-12);
-  EXPECT_EQ(line->start, Eigen::Vector3d(0, 0, 2));
-  EXPECT_TRUE(b->bad);
-  EXPECT_EQ(b->replaced_by, a);
-  // The keyframe saw both through two keypoints: it keeps the winner once.
-  EXPECT_EQ(kf->map_points[0], a);
-  EXPECT_EQ(kf->map_points[1], nullptr);
-  EXPECT_EQ(a->observations(), 1);
 }
 
 TEST(ConfigFromString, SameChecksAsFiles) {

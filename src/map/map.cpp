@@ -1,7 +1,6 @@
 #include "ply_slam/map/map.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace ply_slam {
 
@@ -202,47 +201,6 @@ std::vector<std::shared_ptr<MapLine>> Map::mapLines() const {
 size_t Map::numMapLines() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return lines_.size();
-}
-
-size_t Map::applyUpdate(const MapUpdate& update) {
-  size_t applied = 0;
-  std::vector<std::pair<std::shared_ptr<MapPoint>, std::shared_ptr<MapPoint>>> merges;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::unordered_map<long, KeyFrame*> keyframes;
-    for (const auto& kf : keyframes_) keyframes[kf->id] = kf.get();
-    std::unordered_map<long, std::shared_ptr<MapPoint>> points;
-    for (const auto& p : points_) points[p->id] = p;
-    std::unordered_map<long, MapLine*> lines;
-    for (const auto& l : lines_) lines[l->id] = l.get();
-    for (const auto& k : update.keyframes) {
-      const auto it = keyframes.find(k.id);
-      if (it == keyframes.end()) continue;
-      it->second->T_cw = k.T_wc.inverse();
-      ++applied;
-    }
-    for (const auto& p : update.points) {
-      const auto it = points.find(p.id);
-      if (it == points.end() || it->second->bad) continue;
-      it->second->position = p.position;
-      ++applied;
-    }
-    for (const auto& l : update.lines) {
-      const auto it = lines.find(l.id);
-      if (it == lines.end() || it->second->bad) continue;
-      it->second->start = l.start;
-      it->second->end = l.end;
-      ++applied;
-    }
-    for (const auto& m : update.merged_points) {
-      const auto from = points.find(m.from), to = points.find(m.to);
-      if (from == points.end() || to == points.end() || from->second == to->second) continue;
-      if (from->second->bad || to->second->bad) continue;
-      merges.emplace_back(from->second, to->second);
-    }
-  }
-  for (const auto& [loser, winner] : merges) replace(loser, winner);  // locks by itself
-  return applied + merges.size();
 }
 
 }  // namespace ply_slam

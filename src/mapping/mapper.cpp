@@ -55,6 +55,7 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
   correction->global_ba_ms = watch.elapsedMs();
   correction->ms += correction->global_ba_ms;
   correction->update = wholeMap();
+  correction->update.whole_map = true;
   return correction;
 }
 
@@ -68,6 +69,25 @@ MapUpdate Mapper::wholeMap() const {
     if (!p->bad) update.points.push_back({p->id, p->position});
   for (const auto& l : map_.mapLines())
     if (!l->bad) update.lines.push_back({l->id, l->start, l->end});
+  return update;
+}
+
+MapUpdate Mapper::localUpdate(const KeyFrame& keyframe) const {
+  MapUpdate update;
+  update.stamp = keyframe.stamp;
+  std::vector<const KeyFrame*> window{&keyframe};
+  for (const KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
+    window.push_back(kf);
+  std::set<long> points, lines;
+  for (const KeyFrame* kf : window) {
+    update.keyframes.push_back({kf->id, kf->T_wc()});
+    for (const auto& p : kf->map_points)
+      if (p && !p->bad && points.insert(p->id).second)
+        update.points.push_back({p->id, p->position});
+    for (const auto& l : kf->map_lines)
+      if (l && !l->bad && lines.insert(l->id).second)
+        update.lines.push_back({l->id, l->start, l->end});
+  }
   return update;
 }
 

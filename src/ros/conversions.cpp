@@ -248,6 +248,8 @@ MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
   m.points = toMsgs<LandmarkMsg>(u.points);
   m.lines = toMsgs<Line3DMsg>(u.lines);
   m.merged_points = toMsgs<LandmarkMergeMsg>(u.merged_points);
+  m.erased_keyframes.assign(u.erased_keyframes.begin(), u.erased_keyframes.end());
+  m.whole_map = u.whole_map;
   return m;
 }
 
@@ -258,6 +260,8 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.points = fromMsgs<LandmarkPoint>(m.points);
   u.lines = fromMsgs<LandmarkLine>(m.lines);
   u.merged_points = fromMsgs<MapUpdate::Merge>(m.merged_points);
+  u.erased_keyframes.assign(m.erased_keyframes.begin(), m.erased_keyframes.end());
+  u.whole_map = m.whole_map;
   return u;
 }
 

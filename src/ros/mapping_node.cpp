@@ -79,7 +79,6 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   lines_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("map_lines", 1, true);
   keyframes_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("keyframes", 1, true);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
-  update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 10);
   // Dense cloud and octree (issue #7): built on the worker's thread from the keyframes'
   // images, published every ~dense_publish_period seconds. Settings: the config's dense section.
   const SystemConfig config = pnh_.hasParam("config") ? configFromParams(pnh_) : SystemConfig();
@@ -98,11 +97,15 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
                                 100, &MappingNode::onKeyFrame, this);
   pose_sub_ = nh_.subscribe(pnh_.param<std::string>("pose_topic", "tracking_node/pose"), 100,
                             &MappingNode::onPose, this);
+  update_sub_ =
+      nh_.subscribe(pnh_.param<std::string>("map_update_topic", "tracking_node/map_update"), 100,
+                    &MappingNode::onMapUpdate, this);
   save_trajectory_srv_ =
       pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
   save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
   ROS_INFO_STREAM("mapping_node: keyframes from "
-                  << keyframe_sub_.getTopic() << ", poses from " << pose_sub_.getTopic() << "; tf "
+                  << keyframe_sub_.getTopic() << ", poses from " << pose_sub_.getTopic()
+                  << ", map updates from " << update_sub_.getTopic() << "; tf "
                   << (odom_frame_.empty() ? world_frame_ + " -> " + camera_frame_
                                           : map_frame_ + " -> " + odom_frame_));
 }
@@ -125,11 +128,49 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
       return;
     }
   }
-  // Local bundle adjustment and loop closure (later issue) go here: run them on the store's
-  // keyframes and landmarks, apply the result with store_.apply(update) and send it to the
-  // tracker: update_pub_.publish(toMsg(update, world_frame_)). Today the tracking process still
-  // runs local BA in line (System), so there are no corrections to send yet.
   publishMap(msg->header.stamp);
+}
+
+// What the tracking process's mapping side changed: frames hanging from erased keyframes move to
+// live ones, then the store takes the new poses and landmarks. The dense maps drop the erased
+// keyframes and re-place theirs only after a loop closure (a rebuild of the octree is heavy; local
+// BA moves keyframes by millimetres).
+void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
+  MapUpdate update;
+  try {
+    update = fromMsg(*msg);
+  } catch (const std::exception& e) {
+    bad_input_.report("map_update", e.what());
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    AnchoredTrajectory::KeyFramePoses live = anchorPoses();
+    for (long id : update.erased_keyframes) live.erase(id);
+    for (long id : update.erased_keyframes) {
+      const auto erased = store_.keyFrames().find(id);
+      if (erased != store_.keyFrames().end())
+        camera_trajectory_.reanchor(id, erased->second.T_wc.inverse(), live);
+    }
+    store_.apply(update);
+    ++map_updates_;
+    loop_updates_ += update.whole_map;
+  }
+  if (dense_) {
+    if (!update.erased_keyframes.empty()) dense_->erase(update.erased_keyframes);
+    if (update.whole_map) dense_->push(update);
+  }
+  publishMap(msg->header.stamp);
+}
+
+AnchoredTrajectory::KeyFramePoses MappingNode::anchorPoses() const {
+  AnchoredTrajectory::KeyFramePoses poses{{kWorld, Eigen::Isometry3d::Identity()}};
+  for (const auto& [id, kf] : store_.keyFrames()) poses.emplace(id, kf.T_wc.inverse());
+  return poses;
+}
+
+Trajectory MappingNode::cameraTrajectory() const {
+  return camera_trajectory_.trajectory(anchorPoses());
 }
 
 void MappingNode::onPose(const geometry_msgs::PoseStampedConstPtr& msg) {
@@ -142,7 +183,13 @@ void MappingNode::onPose(const geometry_msgs::PoseStampedConstPtr& msg) {
   }
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    camera_trajectory_.push_back({msg->header.stamp.toSec(), T_world_camera});
+    const auto& keyframes = store_.keyFrames();
+    const long anchor = keyframes.empty() ? kWorld : keyframes.rbegin()->first;
+    const Eigen::Isometry3d T_anchor_world = keyframes.empty()
+                                                 ? Eigen::Isometry3d::Identity()
+                                                 : keyframes.rbegin()->second.T_wc.inverse();
+    camera_trajectory_.add(msg->header.stamp.toSec(), anchor, T_anchor_world,
+                           T_world_camera.inverse());
   }
   broadcastTf(msg->header.stamp, T_world_camera);
 }
@@ -236,10 +283,12 @@ void MappingNode::publishMap(const ros::Time& stamp) {
 bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
   try {
-    if (camera_trajectory_.empty()) throw std::runtime_error("no tracked frame yet");
-    writeTumTrajectory(request.path, camera_trajectory_);
+    if (camera_trajectory_.size() == 0) throw std::runtime_error("no tracked frame yet");
+    writeTumTrajectory(request.path, cameraTrajectory());
     response.success = true;
-    response.message = std::to_string(camera_trajectory_.size()) + " poses to " + request.path;
+    response.message = std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
+                       " (" + std::to_string(map_updates_) + " map updates applied, " +
+                       std::to_string(loop_updates_) + " after a loop closure)";
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();
@@ -279,7 +328,7 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
         writeDenseMaps(request.path, map, octree);
       });
     writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
-                       camera_trajectory_);
+                       cameraTrajectory());
     response.success = true;
     response.message = std::to_string(store_.keyFrames().size()) + " keyframes, " +
                        std::to_string(store_.points().size()) + " points, " +

@@ -60,6 +60,7 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   pose_pub_ = pnh_.advertise<geometry_msgs::PoseStamped>("pose", 10);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
   keyframe_pub_ = pnh_.advertise<KeyFrameMsg>("keyframe", 100);
+  map_update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 100);
   stats_pub_ = pnh_.advertise<std_msgs::String>("stats", 1, true);
   tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
@@ -82,9 +83,6 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   sync_->registerCallback(&TrackingNode::onImages, this);
   info_sub_ = nh_.subscribe(pnh_.param<std::string>("camera_info_topic", "rgb/camera_info"), 1,
                             &TrackingNode::onCameraInfo, this);
-  update_sub_ =
-      nh_.subscribe(pnh_.param<std::string>("map_update_topic", "mapping_node/map_update"), 10,
-                    &TrackingNode::onMapUpdate, this);
   if (flush_after_s_ > 0)
     flush_timer_ = nh_.createWallTimer(ros::WallDuration(flush_after_s_ / 2),
                                        [this](const ros::WallTimerEvent&) { flushStalledPair(); });
@@ -134,7 +132,7 @@ void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
   last_paired_rgb_stamp_ = std::max(last_paired_rgb_stamp_, rgb->header.stamp);
   last_paired_depth_stamp_ = std::max(last_paired_depth_stamp_, depth->header.stamp);
   ++synchronised_;
-  enqueue({rgb, depth, nullptr});
+  enqueue({rgb, depth});
 }
 
 // Runs on the spinner thread like the subscriber callbacks, so it needs no lock of its own.
@@ -150,26 +148,18 @@ void TrackingNode::flushStalledPair() {
   onImages(newest_rgb_, newest_depth_);
 }
 
-void TrackingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& update) {
-  enqueue({nullptr, nullptr, update});
-}
-
 void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
   std::lock_guard<std::mutex> lock(info_mutex_);
   camera_info_ = info;
 }
 
 // Frames wait here for the worker; when it falls this far behind the oldest frame goes (a live
-// camera cannot wait), map updates are never dropped.
+// camera cannot wait).
 void TrackingNode::enqueue(Job job) {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    const auto frames =
-        std::count_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
-    if (job.rgb && static_cast<size_t>(frames) >= frame_queue_size_) {
-      const auto oldest =
-          std::find_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
-      queue_.erase(oldest);
+    if (queue_.size() >= frame_queue_size_) {
+      queue_.pop_front();
       ++behind_dropped_;
       bad_input_.report("behind", "tracking is behind; dropped the oldest waiting frame");
     }
@@ -189,19 +179,12 @@ void TrackingNode::work() {
       queue_.pop_front();
     }
     try {
-      if (job.update) {
-        if (system_) {
-          system_->applyMapUpdate(fromMsg(*job.update));
-          ++updates_;
-        }
-      } else {
-        track(*job.rgb, *job.depth);
-      }
+      track(*job.rgb, *job.depth);
     } catch (const BadRgbdMessage& e) {
       bad_input_.report(e.kind(), e.what());
     } catch (const InvalidFrame& e) {
       bad_input_.report("invalid_frame", e.what());
-    } catch (const std::exception& e) {  // a malformed map update, a segmenter failure
+    } catch (const std::exception& e) {  // a segmenter failure
       bad_input_.report("error", e.what());
     }
     publishStats();
@@ -278,6 +261,11 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
     keyframe_pub_.publish(toMsg(*result.keyframe_packet, world_frame_));
     ++keyframes_;
   }
+  if (result.map_update) {
+    map_update_pub_.publish(toMsg(*result.map_update, world_frame_));
+    ++updates_;
+    loops_ += result.loop_correction != nullptr;
+  }
   if (!publish_images_) return;
   std_msgs::Header image_header = rgb.header;
   if (tracking_image_pub_.getNumSubscribers() > 0)
@@ -296,8 +284,8 @@ void TrackingNode::publishStats() {
   s << "rgb_received=" << rgb_received_ << " depth_received=" << depth_received_
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
-    << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
-    << " median_ms=" << upperMedian(total_ms_, 0.0);
+    << " loops=" << loops_ << " dropped_behind=" << behind_dropped_
+    << " skipped_bad=" << bad_input_.total() << " median_ms=" << upperMedian(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
-#include <iterator>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
@@ -118,7 +117,8 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   if (result.tracking.new_keyframe) map(images, judged, result);
   if (result.tracking.state == TrackingState::kOk) {
     const auto reference = tracker_.referenceKeyFrame();
-    tracked_.push_back({images.stamp, reference, reference->T_cw * result.tracking.T_cw.inverse()});
+    anchors_.emplace(reference->id, reference);
+    tracked_.add(images.stamp, reference->id, reference->T_cw, result.tracking.T_cw);
   }
   return result;
 }
@@ -131,7 +131,7 @@ void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
       mapper_.insertKeyFrame(result.tracking.new_keyframe, {tracker_.referenceKeyFrame()->id});
   result.culled_keyframes = mapped.culled_keyframes;
   result.culled_points = mapped.culled_points;
-  if (!mapped.culled_keyframes.empty()) reanchorTrackedFrames();
+  reanchorTrackedFrames(mapped.culled_keyframes);
   result.keyframe_packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
       keyframe, config_.camera, images, judged, result.dynamic_instances, result.dynamic_mask));
   if (auto correction = mapper_.closeLoop(keyframe, *result.keyframe_packet)) {
@@ -139,6 +139,10 @@ void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
     result.tracking.T_cw = result.tracking.T_cw * correction->world_correction.inverse();
     result.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
   }
+  MapUpdate update =
+      result.loop_correction ? result.loop_correction->update : mapper_.localUpdate(keyframe);
+  update.erased_keyframes = mapped.culled_keyframes;
+  result.map_update = std::make_shared<const MapUpdate>(std::move(update));
   result.timing.mapping_ms = mapping.elapsedMs();
 }
 
@@ -168,28 +172,31 @@ void System::markInliers(const Frame& frame, std::vector<FeatureMark>& marks) {
   }
 }
 
-void System::reanchorTrackedFrames() {
-  const auto keyframes = map_.keyFrames();  // in id order, the first never culled
-  for (TrackedFrame& f : tracked_) {
-    if (!f.reference->bad) continue;
-    // Culled just now, so its pose still agrees with the map's: hang the frame on the live
-    // keyframe made just before it (the same stretch of the trajectory).
-    const long id = f.reference->id;
-    auto next = std::lower_bound(keyframes.begin(), keyframes.end(), id,
-                                 [](const auto& kf, long v) { return kf->id < v; });
-    const std::shared_ptr<KeyFrame>& anchor = *std::prev(next);
-    f.T_reference_camera = anchor->T_cw * f.reference->T_wc() * f.T_reference_camera;
-    f.reference = anchor;
+void System::reanchorTrackedFrames(const std::vector<long>& erased) {
+  if (erased.empty()) return;
+  std::map<long, std::shared_ptr<const KeyFrame>> keyframes;
+  AnchoredTrajectory::KeyFramePoses live;
+  for (const auto& kf : map_.keyFrames()) {
+    keyframes.emplace(kf->id, kf);
+    live.emplace(kf->id, kf->T_cw);
+  }
+  for (long id : erased) {
+    const auto culled = anchors_.find(id);
+    if (culled == anchors_.end()) continue;  // no frame hangs from it
+    // Culled just now, so its pose still agrees with the map's.
+    const long anchor = tracked_.reanchor(id, culled->second->T_cw, live);
+    anchors_.erase(culled);
+    anchors_.emplace(anchor, keyframes.at(anchor));
   }
 }
 
-Trajectory System::cameraTrajectory() const {
-  Trajectory trajectory;
-  trajectory.reserve(tracked_.size());
-  for (const TrackedFrame& f : tracked_)
-    trajectory.push_back({f.stamp, f.reference->T_wc() * f.T_reference_camera});
-  return trajectory;
+AnchoredTrajectory::KeyFramePoses System::anchorPoses() const {
+  AnchoredTrajectory::KeyFramePoses poses;
+  for (const auto& [id, kf] : anchors_) poses.emplace(id, kf->T_cw);
+  return poses;
 }
+
+Trajectory System::cameraTrajectory() const { return tracked_.trajectory(anchorPoses()); }
 
 Trajectory System::keyFrameTrajectory() const {
   Trajectory trajectory;

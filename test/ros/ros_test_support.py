@@ -42,9 +42,9 @@ def work_dir():
     return tempfile.mkdtemp(prefix="ply_slam_rostest_")
 
 
-def tum_to_bag(sequence, bag, d435i=False):
+def tum_to_bag(sequence, bag, d435i=False, extra=()):
     command = ["/usr/bin/python3", os.path.join(PACKAGE_DIR, "scripts", "tum_to_bag.py"),
-               sequence, bag] + (["--d435i"] if d435i else [])
+               sequence, bag] + (["--d435i"] if d435i else []) + list(extra)
     subprocess.run(command, check=True)
 
 

@@ -139,6 +139,8 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   u.points = {{11, {0.1, 0.2, 0.3}}};
   u.lines = {{5, {1, 1, 1}, {2, 2, 2}}};
   u.merged_points = {{11, 12}, {13, 14}};
+  u.erased_keyframes = {2, 3};
+  u.whole_map = true;
   const MapUpdate v = fromMsg(throughWire(toMsg(u, "map")));
   EXPECT_EQ(v.stamp, u.stamp);
   ASSERT_EQ(v.keyframes.size(), 2u);
@@ -151,6 +153,8 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   ASSERT_EQ(v.merged_points.size(), 2u);
   EXPECT_EQ(v.merged_points[1].from, 13);
   EXPECT_EQ(v.merged_points[1].to, 14);
+  EXPECT_EQ(v.erased_keyframes, (std::vector<long>{2, 3}));
+  EXPECT_TRUE(v.whole_map);
 }
 
 }  // namespace

@@ -55,7 +55,9 @@ struct KeyFramePacket {
   cv::Mat dynamic_mask;  // 8UC1, non-zero: pixels of moving things (dilated); empty = none
 };
 
-// Mapper -> tracker: corrections after local BA or loop closure. Mirrored by msg/MapUpdate.msg.
+// What the mapping side changed in the map after a keyframe: the poses and landmarks local BA
+// moved, or after a loop closure the whole map, and the keyframes it erased. Whoever keeps a
+// copy of the map (mapping_node, the dense maps) applies it. Mirrored by msg/MapUpdateMsg.msg.
 struct MapUpdate {
   struct KeyFramePose {
     long id = 0;
@@ -70,6 +72,8 @@ struct MapUpdate {
   std::vector<LandmarkPoint> points;
   std::vector<LandmarkLine> lines;
   std::vector<Merge> merged_points;
+  std::vector<long> erased_keyframes;  // culled as redundant
+  bool whole_map = false;              // every keyframe and landmark (after a loop closure)
 };
 
 }  // namespace ply_slam

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "ply_slam/map/key_frame.h"
-#include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map_line.h"
 #include "ply_slam/map/map_point.h"
 
@@ -28,10 +27,6 @@ class Map {
   // Merges `loser` into `winner` (two landmarks found to be one): every keyframe that saw the
   // loser sees the winner instead; the loser turns bad and points to its replacement.
   void replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<MapPoint>& winner);
-  // Moves keyframes and landmarks to the corrected poses and positions of a MapUpdate (from
-  // the mapping side) and merges the landmarks it found to be one. Unknown ids are skipped;
-  // returns how many entries were applied.
-  size_t applyUpdate(const MapUpdate& update);
   // Drops points marked bad from the container (keyframes keep null-safe shared_ptrs).
   size_t removeBadPoints();
   // Turns a point bad and unlinks it from every keyframe that saw it, so that covisibility

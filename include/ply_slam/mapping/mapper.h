@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/key_frame_culler.h"
 #include "ply_slam/mapping/landmark_fuser.h"
@@ -42,6 +43,9 @@ class Mapper {
   std::optional<LoopCorrection> closeLoop(KeyFrame& keyframe, const KeyFramePacket& packet);
   // Relocalisation candidates (keyframe ids, most similar first); empty without loop.enabled.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
+  // What local BA around `keyframe` may have moved: the poses of its window (itself and its
+  // covisible keyframes) and the landmarks they see.
+  MapUpdate localUpdate(const KeyFrame& keyframe) const;
   bool recognisesPlaces() const { return loop_closer_ != nullptr; }
   // Null without loop.enabled.
   const LoopClosureCounts* loopCounts() const {

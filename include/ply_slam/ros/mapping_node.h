@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/MapUpdateMsg.h>
 #include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
@@ -14,15 +15,17 @@
 
 #include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
+#include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/ros/bad_input_log.h"
 
 namespace ply_slam {
 
-// ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps the map from the tracker's
-// keyframes (MapStore), shows it (points, lines, keyframes, path, dense cloud, semantic octree),
-// broadcasts tf and saves trajectory and maps on request. Local bundle adjustment still runs inside
-// the tracking process (System); see onKeyFrame for where it and loop closure will go.
+// ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps a copy of the map from the
+// tracker's keyframes and map updates (MapStore), shows it (points, lines, keyframes, path, dense
+// cloud, semantic octree), broadcasts tf and saves trajectory and maps on request. Local bundle
+// adjustment, culling and loop closure run in the tracking process (System, in line); their
+// results arrive here as MapUpdates (README, "Layout").
 class MappingNode {
  public:
   MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
@@ -30,6 +33,10 @@ class MappingNode {
  private:
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
+  void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
+  // Keyframe poses (T_cw) of the store, and kWorld (identity) for frames before any keyframe.
+  AnchoredTrajectory::KeyFramePoses anchorPoses() const;
+  Trajectory cameraTrajectory() const;
   bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   void publishMap(const ros::Time& stamp);
@@ -39,13 +46,18 @@ class MappingNode {
   ros::NodeHandle nh_, pnh_;
   std::string map_frame_, world_frame_, odom_frame_, base_frame_, camera_frame_;
 
-  std::mutex mutex_;  // store_, camera_trajectory_, camera frame (callbacks vs services)
+  // Guards store_, camera_trajectory_ and the counters: callbacks vs services.
+  std::mutex mutex_;
   MapStore store_;
-  Trajectory camera_trajectory_;  // every tracked frame, from the tracker's ~pose
+  // Every tracked frame from the tracker's ~pose, hung from the newest keyframe at its arrival
+  // (kWorld before the first): map updates move it with the keyframes.
+  AnchoredTrajectory camera_trajectory_;
+  static constexpr long kWorld = -1;
+  size_t map_updates_ = 0, loop_updates_ = 0;
   BadInputLog bad_input_;
 
-  ros::Subscriber keyframe_sub_, pose_sub_;
-  ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_, update_pub_;
+  ros::Subscriber keyframe_sub_, pose_sub_, update_sub_;
+  ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
 
   // Dense cloud and semantic octree (issue #7), on their own thread; null when disabled.

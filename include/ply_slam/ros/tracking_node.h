@@ -24,9 +24,10 @@
 namespace ply_slam {
 
 // ROS glue of the tracking side (DESIGN.md, "ROS interface"): synchronised RGB + depth (+
-// camera_info) -> System::process -> pose, path, images, keyframes; ~map_update from the
-// mapping node -> System::applyMapUpdate. Frames are tracked on a worker thread in arrival
-// order so the subscribers never block; bad input is counted, logged throttled and skipped.
+// camera_info) -> System::process (tracking and, in line, the mapping side) -> pose, path,
+// images, keyframes and what the mapping side changed (~map_update, for mapping_node). Frames are
+// tracked on a worker thread in arrival order so the subscribers never block; bad input is
+// counted, logged throttled and skipped.
 class TrackingNode {
  public:
   TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
@@ -37,7 +38,6 @@ class TrackingNode {
   using SyncPolicy = message_filters::sync_policies::ApproximateTime<Image, Image>;
   struct Job {
     sensor_msgs::ImageConstPtr rgb, depth;
-    ply_slam::MapUpdateMsgConstPtr update;
   };
 
   void onImages(const sensor_msgs::ImageConstPtr& rgb, const sensor_msgs::ImageConstPtr& depth);
@@ -45,7 +45,6 @@ class TrackingNode {
   void onDepth(const sensor_msgs::ImageConstPtr& depth);
   void flushStalledPair();
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
-  void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& update);
   void enqueue(Job job);
   void work();
   void track(const Image& rgb, const Image& depth);
@@ -68,8 +67,8 @@ class TrackingNode {
 
   message_filters::Subscriber<Image> rgb_sub_, depth_sub_;
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
-  ros::Subscriber info_sub_, update_sub_;
-  ros::Publisher pose_pub_, path_pub_, keyframe_pub_, stats_pub_;
+  ros::Subscriber info_sub_;
+  ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, stats_pub_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();
@@ -96,7 +95,7 @@ class TrackingNode {
   // Counters for ~stats and the shutdown report.
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
-      updates_{0};
+      updates_{0}, loops_{0};
   std::vector<double> total_ms_;  // worker thread only
 };
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/mapper.h"
@@ -54,9 +56,11 @@ struct FrameResult {
   int culled_points = 0;
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
-  // Set when the keyframe closed a loop: what moved (keyframes and landmarks; the dense maps
-  // re-place their keyframes with it).
+  // Set when the keyframe closed a loop: the correction and its counts.
   std::shared_ptr<const LoopCorrection> loop_correction;
+  // Set with a keyframe: what the mapping side changed (local BA's window, culled keyframes, or
+  // after a loop the whole map) for whoever keeps a copy of the map (mapping_node).
+  std::shared_ptr<const MapUpdate> map_update;
 };
 
 // A frame the system cannot use (empty, wrong encoding or size, stamp not increasing).
@@ -74,10 +78,6 @@ class System {
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
   // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
   FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
-
-  // Corrections from the mapping side (mapping_node's ~map_update): keyframe poses, landmark
-  // positions and merges go into the map the tracker uses. Returns the entries applied.
-  size_t applyMapUpdate(const MapUpdate& update) { return map_.applyUpdate(update); }
 
   // Tracked frames, each placed relative to its reference keyframe as the map has that keyframe
   // now: bundle adjustment and loop closure move the past with the map.
@@ -97,15 +97,9 @@ class System {
   // The mapping side, in line so that offline runs are reproducible: map upkeep, the packet,
   // then the loop query (which needs the packet's images).
   void map(const RgbdImages& images, const std::vector<Instance>& judged, FrameResult& result);
-  // Tracked frames whose reference keyframe was culled move to a live one, where they are.
-  void reanchorTrackedFrames();
-
-  // A tracked frame: where it was relative to its reference keyframe.
-  struct TrackedFrame {
-    double stamp = 0.0;
-    std::shared_ptr<const KeyFrame> reference;
-    Eigen::Isometry3d T_reference_camera = Eigen::Isometry3d::Identity();
-  };
+  // Frames anchored on keyframes the mapping side erased move to live ones, where they are.
+  void reanchorTrackedFrames(const std::vector<long>& erased);
+  AnchoredTrajectory::KeyFramePoses anchorPoses() const;
 
   SystemConfig config_;
   OrbExtractor extractor_;
@@ -118,7 +112,10 @@ class System {
   Mapper mapper_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
-  std::vector<TrackedFrame> tracked_;
+  // Tracked frames, each relative to the tracker's reference keyframe of its time; the
+  // keyframes they hang from (culled ones are replaced at once, see reanchorTrackedFrames).
+  AnchoredTrajectory tracked_;
+  std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
 };
 
 }  // namespace ply_slam
