@@ -376,11 +376,43 @@ TEST(ShippedConfig, LoopClosureOnWithTheDefaultVocabularies) {
     EXPECT_EQ(config.loop.orb_vocabulary, "") << file;
     EXPECT_EQ(config.loop.lbd_vocabulary, "") << file;
     EXPECT_EQ(config.loop.consistency, 3) << file;
+    const CullingOptions culling_defaults;
+    EXPECT_EQ(config.culling.keyframes.redundancy, culling_defaults.keyframes.redundancy) << file;
+    EXPECT_EQ(config.culling.keyframes.min_observers, culling_defaults.keyframes.min_observers)
+        << file;
+    EXPECT_EQ(config.culling.points.min_found_ratio, culling_defaults.points.min_found_ratio)
+        << file;
+    EXPECT_EQ(config.culling.points.probation_keyframes,
+              culling_defaults.points.probation_keyframes)
+        << file;
   }
 }
 
+TEST(CullingSection, ValuesReachTheOptionsAndBadOnesNameTheKey) {
+  const std::string base =
+      "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n";
+  const SystemConfig config = loadConfigFromString(
+      base + "culling: {keyframe_redundancy: 1.0, keyframe_level_slack: 0, point_min_visible: 5}\n",
+      "test");
+  EXPECT_EQ(config.culling.keyframes.redundancy, 1.0);
+  EXPECT_EQ(config.culling.keyframes.level_slack, 0);
+  EXPECT_EQ(config.culling.points.min_visible, 5);
+  EXPECT_EQ(config.culling.points.min_found_ratio, 0.25);  // not given: the default
+  try {
+    loadConfigFromString(base + "culling: {keyframe_redundancy: 1.5}\n", "test");
+    FAIL() << "a redundancy above 1 was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("culling.keyframe_redundancy"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(loadConfigFromString(base + "culling: {redundancy: 0.9}\n", "test"), ConfigError);
+  EXPECT_THROW(loadConfigFromString(base + "culling: {point_min_found_ratio: -0.1}\n", "test"),
+               ConfigError);
+}
+
 TEST(LoopCorrectionSection, OutOfRangeAndUnknownKeysNameTheKey) {
-  const std::string base = "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n";
+  const std::string base =
+      "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n";
   try {
     loadConfigFromString(base + "loop_correction: {max_drift_fraction: -0.1}\n", "test");
     FAIL() << "a negative drift fraction was accepted";

@@ -9,6 +9,7 @@
 
 #include "ply_slam/common/config_section.h"
 #include "ply_slam/loop/loop_options_yaml.h"
+#include "ply_slam/mapping/culling_options_yaml.h"
 #include "ply_slam/mapping/loop_correction_options_yaml.h"
 
 namespace ply_slam {
@@ -223,6 +224,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   config.loop = readLoopOptions(top.child("loop"));
   config.loop.depth_noise = config.camera.depth_noise;
   config.loop_correction = readLoopCorrectionOptions(top.child("loop_correction"));
+  config.culling = readCullingOptions(top.child("culling"));
   top.rejectUnknownKeys();
   return config;
 }

@@ -7,7 +7,12 @@
 namespace ply_slam {
 
 Mapper::Mapper(const SystemConfig& config, Map& map)
-    : config_(config), map_(map), fuser_(config), bundle_adjuster_(config) {
+    : config_(config),
+      map_(map),
+      fuser_(config),
+      bundle_adjuster_(config),
+      point_culler_(config.culling.points),
+      keyframe_culler_(config.culling.keyframes) {
   if (config_.loop.enabled)
     loop_closer_ = std::make_unique<LoopCloser>(
         LoopDetector::fromOptions(config_.camera, config_.loop), config_, fuser_, map_);

@@ -8,8 +8,10 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <filesystem>
 
+#include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/map_export.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/ros/config_from_params.h"
@@ -111,6 +113,7 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 }
 
 void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
+  const Stopwatch watch;
   KeyFramePacket packet;
   try {
     packet = fromMsg(*msg);
@@ -129,6 +132,7 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
     }
   }
   publishMap(msg->header.stamp);
+  noteCallbackMs(watch.elapsedMs());
 }
 
 // What the tracking process's mapping side changed: frames hanging from erased keyframes move to
@@ -136,6 +140,7 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
 // keyframes and re-place theirs only after a loop closure (a rebuild of the octree is heavy; local
 // BA moves keyframes by millimetres).
 void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
+  const Stopwatch watch;
   MapUpdate update;
   try {
     update = fromMsg(*msg);
@@ -161,6 +166,12 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     if (update.whole_map) dense_->push(update);
   }
   publishMap(msg->header.stamp);
+  noteCallbackMs(watch.elapsedMs());
+}
+
+void MappingNode::noteCallbackMs(double ms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  longest_callback_ms_ = std::max(longest_callback_ms_, ms);
 }
 
 AnchoredTrajectory::KeyFramePoses MappingNode::anchorPoses() const {
@@ -288,7 +299,8 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
     response.success = true;
     response.message = std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
                        " (" + std::to_string(map_updates_) + " map updates applied, " +
-                       std::to_string(loop_updates_) + " after a loop closure)";
+                       std::to_string(loop_updates_) + " after a loop closure; longest keyframe " +
+                       "or map-update callback " + std::to_string(longest_callback_ms_) + " ms)";
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();

@@ -6,6 +6,7 @@
 
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/loop/loop_options.h"
+#include "ply_slam/mapping/culling_options.h"
 #include "ply_slam/mapping/loop_correction_options.h"
 
 namespace ply_slam {
@@ -166,6 +167,7 @@ struct SystemConfig {
   DenseParams dense;
   LoopOptions loop;  // place recognition (loop module); its depth noise is the camera's
   LoopCorrectionOptions loop_correction;  // closing an accepted loop (mapping module)
+  CullingOptions culling;                 // retiring keyframes and points (mapping module)
 };
 
 // Loads a YAML config. Unknown keys, missing required keys (camera intrinsics, size) and

@@ -37,6 +37,8 @@ class MappingNode {
   // Keyframe poses (T_cw) of the store, and kWorld (identity) for frames before any keyframe.
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
   Trajectory cameraTrajectory() const;
+  // Callbacks run one at a time: the longest is how long the tracker's messages may wait.
+  void noteCallbackMs(double ms);
   bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   void publishMap(const ros::Time& stamp);
@@ -54,6 +56,7 @@ class MappingNode {
   AnchoredTrajectory camera_trajectory_;
   static constexpr long kWorld = -1;
   size_t map_updates_ = 0, loop_updates_ = 0;
+  double longest_callback_ms_ = 0.0;
   BadInputLog bad_input_;
 
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_;
