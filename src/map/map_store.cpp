@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <stdexcept>
 
 #include "ply_slam/io/tum_trajectory_file.h"
@@ -46,6 +47,28 @@ void MapStore::apply(const MapUpdate& update) {
   for (const auto& l : update.lines) lines_[l.id] = l;
   for (const auto& m : update.merged_points) points_.erase(m.from);
   for (long id : update.erased_keyframes) keyframes_.erase(id);
+}
+
+std::vector<long> MapStore::restore(const std::vector<KeyFramePacket>& keyframes) {
+  long newest = -1;
+  std::set<long> given;
+  for (const auto& k : keyframes) {
+    newest = std::max(newest, k.id);
+    given.insert(k.id);
+  }
+  std::vector<long> erased;
+  for (const auto& [id, kf] : keyframes_)
+    if (id <= newest && !given.count(id)) erased.push_back(id);
+  for (long id : erased) keyframes_.erase(id);
+  points_.clear();
+  lines_.clear();
+  for (const auto& [id, kf] : keyframes_) {
+    if (given.count(id)) continue;
+    for (const auto& p : kf.points) points_[p.id] = p;
+    for (const auto& l : kf.lines) lines_[l.id] = l;
+  }
+  for (const auto& k : keyframes) insert(k);
+  return erased;
 }
 
 Trajectory MapStore::keyFrameTrajectory() const {

@@ -6,6 +6,7 @@
 #include <ply_slam/MapUpdateMsg.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
+#include <std_srvs/Trigger.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
@@ -102,6 +103,19 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   update_sub_ =
       nh_.subscribe(pnh_.param<std::string>("map_update_topic", "tracking_node/map_update"), 100,
                     &MappingNode::onMapUpdate, this);
+  snapshot_sub_ =
+      nh_.subscribe(pnh_.param<std::string>("map_snapshot_topic", "tracking_node/map_snapshot"), 2,
+                    &MappingNode::onMapSnapshot, this);
+  resend_client_ = nh_.serviceClient<std_srvs::Trigger>(
+      pnh_.param<std::string>("resend_service", "tracking_node/resend_map"));
+  // Started after the tracker (a restart): what went by is not known from a gap until the next
+  // keyframe, so the map is asked for once at the start (an empty one from a fresh tracker).
+  startup_timer_ = nh_.createWallTimer(
+      ros::WallDuration(1.0),
+      [this](const ros::WallTimerEvent&) {
+        if (resend_client_.exists()) onMissed(0, "messages before the start");
+      },
+      true);
   save_trajectory_srv_ =
       pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
   save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
@@ -123,14 +137,18 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
   }
   // The dense maps take the packet's images (the store keeps none); push only queues.
   const auto shared = std::make_shared<const KeyFramePacket>(std::move(packet));
-  if (dense_) dense_->push(shared);
+  uint64_t missed = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    missed = keyframe_sequence_.receive(msg->sequence);
     if (!store_.insert(*shared)) {
       bad_input_.report("keyframe", "keyframe " + std::to_string(shared->id) + " is out of date");
       return;
     }
+    if (dense_) dense_keyframes_.insert(shared->id);
   }
+  if (dense_) dense_->push(shared);
+  if (missed > 0) onMissed(missed, "keyframe messages");
   publishMap(msg->header.stamp);
   noteCallbackMs(watch.elapsedMs());
 }
@@ -148,8 +166,10 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     bad_input_.report("map_update", e.what());
     return;
   }
+  uint64_t missed = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    missed = update_sequence_.receive(msg->sequence);
     AnchoredTrajectory::KeyFramePoses live = anchorPoses();
     for (long id : update.erased_keyframes) live.erase(id);
     for (long id : update.erased_keyframes) {
@@ -165,8 +185,98 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     if (!update.erased_keyframes.empty()) dense_->erase(update.erased_keyframes);
     if (update.whole_map) dense_->push(update);
   }
+  if (missed > 0) onMissed(missed, "map updates");
   publishMap(msg->header.stamp);
   noteCallbackMs(watch.elapsedMs());
+}
+
+void MappingNode::onMissed(uint64_t missed, const std::string& what) {
+  if (missed > 0)
+    ROS_WARN_STREAM("mapping_node: missed " << missed << " " << what << " from the tracker "
+                                            << "(started late or restarted?); asking for its map");
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (resend_requested_) return;
+    resend_requested_ = true;
+  }
+  std_srvs::Trigger trigger;
+  if (resend_client_.call(trigger) && trigger.response.success) return;
+  ROS_ERROR_STREAM("mapping_node: " << resend_client_.getService()
+                                    << " did not answer: the map stays partial");
+  std::lock_guard<std::mutex> lock(mutex_);
+  resend_requested_ = false;
+}
+
+// The tracker's whole map: the store and the trajectory become it (what arrived after it was made
+// stays); the dense maps drop what the map culled meanwhile and re-place the rest.
+void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
+  std::vector<KeyFramePacket> keyframes;
+  Trajectory poses;
+  try {
+    for (const auto& k : msg->keyframes) keyframes.push_back(fromMsg(k));
+    for (const auto& p : msg->trajectory)
+      poses.push_back({p.header.stamp.toSec(), fromPoseMsg(p.pose)});
+  } catch (const std::exception& e) {
+    bad_input_.report("map_snapshot", e.what());
+    return;
+  }
+  MapUpdate placed;
+  placed.whole_map = true;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double last = poses.empty() ? -1.0 : poses.back().stamp;
+    for (const StampedPose& later : cameraTrajectory())
+      if (later.stamp > last) poses.push_back(later);
+    placed.erased_keyframes = store_.restore(keyframes);
+    rebuildTrajectory(poses);
+    keyframe_sequence_.resynchronise(msg->next_keyframe_sequence);
+    update_sequence_.resynchronise(msg->next_update_sequence);
+    resend_requested_ = false;
+    dense_missing_ = 0;
+    for (const auto& k : keyframes) {
+      placed.keyframes.push_back({k.id, k.T_wc});
+      dense_missing_ += dense_ && !dense_keyframes_.count(k.id);
+    }
+    for (long id : placed.erased_keyframes) dense_keyframes_.erase(id);
+  }
+  if (dense_) {
+    dense_->erase(placed.erased_keyframes);
+    dense_->push(placed);
+  }
+  ROS_INFO_STREAM("mapping_node: map restored from the tracker: "
+                  << keyframes.size() << " keyframes, " << poses.size() << " poses"
+                  << (dense_missing_ ? ", " + std::to_string(dense_missing_) +
+                                           " keyframes without images for the dense maps"
+                                     : std::string()));
+  publishMap(msg->header.stamp);
+}
+
+void MappingNode::rebuildTrajectory(const Trajectory& trajectory) {
+  camera_trajectory_ = AnchoredTrajectory();
+  const auto& keyframes = store_.keyFrames();
+  auto next = keyframes.begin();
+  long anchor = kWorld;
+  Eigen::Isometry3d T_anchor_world = Eigen::Isometry3d::Identity();
+  for (const StampedPose& pose : trajectory) {
+    for (; next != keyframes.end() && next->second.stamp <= pose.stamp; ++next) {
+      anchor = next->first;
+      T_anchor_world = next->second.T_wc.inverse();
+    }
+    camera_trajectory_.add(pose.stamp, anchor, T_anchor_world, pose.T_wc.inverse());
+  }
+}
+
+std::string MappingNode::partialReason(bool dense) const {
+  std::string reason;
+  auto add = [&reason](const std::string& part) { reason += (reason.empty() ? "" : "; ") + part; };
+  if (keyframe_sequence_.missed() > 0)
+    add("missed " + std::to_string(keyframe_sequence_.missed()) + " keyframe messages");
+  if (update_sequence_.missed() > 0)
+    add("missed " + std::to_string(update_sequence_.missed()) + " map updates");
+  if (dense && dense_missing_ > 0)
+    add("the dense maps lack " + std::to_string(dense_missing_) +
+        " keyframes whose images came while mapping_node was not running");
+  return reason;
 }
 
 void MappingNode::noteCallbackMs(double ms) {
@@ -296,8 +406,10 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
   try {
     if (camera_trajectory_.size() == 0) throw std::runtime_error("no tracked frame yet");
     writeTumTrajectory(request.path, cameraTrajectory());
-    response.success = true;
-    response.message = std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
+    const std::string partial = partialReason(false);
+    response.success = partial.empty();
+    response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
+                       std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
                        " (" + std::to_string(map_updates_) + " map updates applied, " +
                        std::to_string(loop_updates_) + " after a loop closure; longest keyframe " +
                        "or map-update callback " + std::to_string(longest_callback_ms_) + " ms)";
@@ -305,7 +417,10 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
     response.success = false;
     response.message = e.what();
   }
-  ROS_INFO_STREAM("save_trajectory: " << response.message);
+  if (response.success)
+    ROS_INFO_STREAM("save_trajectory: " << response.message);
+  else
+    ROS_WARN_STREAM("save_trajectory: " << response.message);
   return true;
 }
 
@@ -341,15 +456,20 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
       });
     writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
                        cameraTrajectory());
-    response.success = true;
-    response.message = std::to_string(store_.keyFrames().size()) + " keyframes, " +
+    const std::string partial = partialReason(true);
+    response.success = partial.empty();
+    response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
+                       std::to_string(store_.keyFrames().size()) + " keyframes, " +
                        std::to_string(store_.points().size()) + " points, " +
                        std::to_string(store_.lines().size()) + " lines to " + request.path;
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();
   }
-  ROS_INFO_STREAM("save_map: " << response.message);
+  if (response.success)
+    ROS_INFO_STREAM("save_map: " << response.message);
+  else
+    ROS_WARN_STREAM("save_map: " << response.message);
   return true;
 }
 

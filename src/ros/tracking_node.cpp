@@ -3,6 +3,7 @@
 #include <cv_bridge/cv_bridge.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/MapSnapshotMsg.h>
 #include <std_msgs/String.h>
 
 #include <algorithm>
@@ -61,6 +62,8 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
   keyframe_pub_ = pnh_.advertise<KeyFrameMsg>("keyframe", 100);
   map_update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 100);
+  snapshot_pub_ = pnh_.advertise<MapSnapshotMsg>("map_snapshot", 2);
+  resend_srv_ = pnh_.advertiseService("resend_map", &TrackingNode::onResendMap, this);
   stats_pub_ = pnh_.advertise<std_msgs::String>("stats", 1, true);
   tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
@@ -153,13 +156,29 @@ void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
   camera_info_ = info;
 }
 
+// A mapper that missed messages asks for the whole map; the worker sends it between two frames.
+bool TrackingNode::onResendMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    queue_.push_front({nullptr, nullptr});
+  }
+  queue_cv_.notify_one();
+  response.success = true;
+  response.message = "the map goes out on " + snapshot_pub_.getTopic() + " before the next frame";
+  ROS_INFO_STREAM("resend_map: " << response.message);
+  return true;
+}
+
 // Frames wait here for the worker; when it falls this far behind the oldest frame goes (a live
 // camera cannot wait).
 void TrackingNode::enqueue(Job job) {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    if (queue_.size() >= frame_queue_size_) {
-      queue_.pop_front();
+    const auto frames =
+        std::count_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
+    if (static_cast<size_t>(frames) >= frame_queue_size_) {
+      queue_.erase(std::find_if(queue_.begin(), queue_.end(),
+                                [](const Job& j) { return j.rgb != nullptr; }));
       ++behind_dropped_;
       bad_input_.report("behind", "tracking is behind; dropped the oldest waiting frame");
     }
@@ -179,7 +198,10 @@ void TrackingNode::work() {
       queue_.pop_front();
     }
     try {
-      track(*job.rgb, *job.depth);
+      if (job.rgb)
+        track(*job.rgb, *job.depth);
+      else
+        publishSnapshot();
     } catch (const BadRgbdMessage& e) {
       bad_input_.report(e.kind(), e.what());
     } catch (const InvalidFrame& e) {
@@ -258,11 +280,15 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
     }
   }
   if (result.keyframe_packet) {
-    keyframe_pub_.publish(toMsg(*result.keyframe_packet, world_frame_));
+    KeyFrameMsg msg = toMsg(*result.keyframe_packet, world_frame_);
+    msg.sequence = keyframe_sequence_++;
+    keyframe_pub_.publish(msg);
     ++keyframes_;
   }
   if (result.map_update) {
-    map_update_pub_.publish(toMsg(*result.map_update, world_frame_));
+    MapUpdateMsg msg = toMsg(*result.map_update, world_frame_);
+    msg.sequence = update_sequence_++;
+    map_update_pub_.publish(msg);
     ++updates_;
     loops_ += result.loop_correction != nullptr;
   }
@@ -277,6 +303,28 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
         cv_bridge::CvImage(image_header, "bgr8",
                            drawSegmentationImage(images.rgb, instances, result.dynamic_instances))
             .toImageMsg());
+}
+
+void TrackingNode::publishSnapshot() {
+  MapSnapshotMsg snapshot;
+  snapshot.header.stamp = ros::Time::now();
+  snapshot.header.frame_id = world_frame_;
+  snapshot.next_keyframe_sequence = keyframe_sequence_;
+  snapshot.next_update_sequence = update_sequence_;
+  if (system_) {
+    for (const KeyFramePacket& packet : system_->sparseKeyFramePackets())
+      snapshot.keyframes.push_back(toMsg(packet, world_frame_));
+    for (const StampedPose& pose : system_->cameraTrajectory()) {
+      geometry_msgs::PoseStamped p;
+      p.header.stamp.fromSec(pose.stamp);
+      p.header.frame_id = world_frame_;
+      p.pose = toPoseMsg(pose.T_wc);
+      snapshot.trajectory.push_back(p);
+    }
+  }
+  snapshot_pub_.publish(snapshot);
+  ROS_INFO_STREAM("resend_map: sent " << snapshot.keyframes.size() << " keyframes and "
+                                      << snapshot.trajectory.size() << " poses");
 }
 
 void TrackingNode::publishStats() {

@@ -4,9 +4,7 @@
 
 namespace ply_slam {
 
-KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
-                                  const RgbdImages& images, const std::vector<Instance>& instances,
-                                  const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask) {
+KeyFramePacket makeSparseKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera) {
   KeyFramePacket packet;
   packet.id = keyframe.id;
   packet.frame_id = keyframe.frame_id;
@@ -29,7 +27,13 @@ KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera&
   }
   for (const auto& ml : keyframe.map_lines)
     if (ml && !ml->bad) packet.lines.push_back({ml->id, ml->start, ml->end});
+  return packet;
+}
 
+KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
+                                  const RgbdImages& images, const std::vector<Instance>& instances,
+                                  const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask) {
+  KeyFramePacket packet = makeSparseKeyFramePacket(keyframe, camera);
   packet.rgb = images.rgb.clone();
   packet.depth = images.depth.clone();
   if (!instances.empty()) {

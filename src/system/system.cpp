@@ -198,6 +198,13 @@ AnchoredTrajectory::KeyFramePoses System::anchorPoses() const {
 
 Trajectory System::cameraTrajectory() const { return tracked_.trajectory(anchorPoses()); }
 
+std::vector<KeyFramePacket> System::sparseKeyFramePackets() const {
+  std::vector<KeyFramePacket> packets;
+  for (const auto& kf : map_.keyFrames())
+    packets.push_back(makeSparseKeyFramePacket(*kf, config_.camera));
+  return packets;
+}
+
 Trajectory System::keyFrameTrajectory() const {
   Trajectory trajectory;
   for (const auto& kf : map_.keyFrames()) trajectory.push_back({kf->stamp, kf->T_wc()});

@@ -18,6 +18,10 @@ class MapStore {
   // packet (an id already stored with a newer stamp).
   bool insert(const KeyFramePacket& packet);
   void apply(const MapUpdate& update);
+  // The tracker's whole map as it is now (after messages were missed): keyframes up to the
+  // newest of `keyframes` are exactly those, later ones stay; landmarks are taken again from
+  // the keyframes held, the given ones last. Returns the ids erased.
+  std::vector<long> restore(const std::vector<KeyFramePacket>& keyframes);
 
   const std::map<long, KeyFramePacket>& keyFrames() const { return keyframes_; }
   const std::map<long, LandmarkPoint>& points() const { return points_; }

@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
@@ -12,7 +13,10 @@
 
 #include <mutex>
 #include <optional>
+#include <set>
+#include <string>
 
+#include "ply_slam/common/message_sequence.h"
 #include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/map/anchored_trajectory.h"
@@ -34,6 +38,14 @@ class MappingNode {
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
+  // A gap in the tracker's numbering (`missed` > 0: say so), or the start: ask the tracker for
+  // its whole map.
+  void onMissed(uint64_t missed, const std::string& what);
+  void onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg);
+  // Every frame of `trajectory` hung from the newest keyframe of the store at its stamp.
+  void rebuildTrajectory(const Trajectory& trajectory);
+  // Why the map or the trajectory is not whole (empty: it is); under mutex_.
+  std::string partialReason(bool dense) const;
   // Keyframe poses (T_cw) of the store, and kWorld (identity) for frames before any keyframe.
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
   Trajectory cameraTrajectory() const;
@@ -59,7 +71,15 @@ class MappingNode {
   double longest_callback_ms_ = 0.0;
   BadInputLog bad_input_;
 
-  ros::Subscriber keyframe_sub_, pose_sub_, update_sub_;
+  ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
+  ros::ServiceClient resend_client_;
+  ros::WallTimer startup_timer_;
+  // Numbering of the tracker's keyframe and map-update messages; missed() counts what the map
+  // lacks until a snapshot restores it.
+  MessageSequence keyframe_sequence_, update_sequence_;
+  bool resend_requested_ = false;
+  std::set<long> dense_keyframes_;  // keyframes whose images the dense maps got
+  size_t dense_missing_ = 0;        // keyframes of the map the dense maps never got
   ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
 

@@ -8,6 +8,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
 
 #include <atomic>
 #include <condition_variable>
@@ -37,7 +38,7 @@ class TrackingNode {
   using Image = sensor_msgs::Image;
   using SyncPolicy = message_filters::sync_policies::ApproximateTime<Image, Image>;
   struct Job {
-    sensor_msgs::ImageConstPtr rgb, depth;
+    sensor_msgs::ImageConstPtr rgb, depth;  // null: send the whole map (~resend_map)
   };
 
   void onImages(const sensor_msgs::ImageConstPtr& rgb, const sensor_msgs::ImageConstPtr& depth);
@@ -45,7 +46,9 @@ class TrackingNode {
   void onDepth(const sensor_msgs::ImageConstPtr& depth);
   void flushStalledPair();
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
+  bool onResendMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   void enqueue(Job job);
+  void publishSnapshot();
   void work();
   void track(const Image& rgb, const Image& depth);
   void startSystem(const sensor_msgs::CameraInfo* info);
@@ -68,7 +71,9 @@ class TrackingNode {
   message_filters::Subscriber<Image> rgb_sub_, depth_sub_;
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
   ros::Subscriber info_sub_;
-  ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, stats_pub_;
+  ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
+  ros::ServiceServer resend_srv_;
+  uint64_t keyframe_sequence_ = 0, update_sequence_ = 0;  // worker thread only
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();

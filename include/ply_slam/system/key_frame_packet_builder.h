@@ -10,6 +10,10 @@
 
 namespace ply_slam {
 
+// The keyframe's pose, features and landmarks as they are now, without images (what a mapper
+// that missed the keyframe can still be given).
+KeyFramePacket makeSparseKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera);
+
 // Packs a new keyframe for the mapping side: pose, features, landmarks, the images and the
 // segmentation (instances in `dynamic_ids` are marked dynamic; `dynamic_mask` may be empty).
 KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,

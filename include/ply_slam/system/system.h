@@ -83,6 +83,8 @@ class System {
   // now: bundle adjustment and loop closure move the past with the map.
   Trajectory cameraTrajectory() const;
   Trajectory keyFrameTrajectory() const;
+  // Every keyframe of the map as it is now, without images (for a mapper that restarted).
+  std::vector<KeyFramePacket> sparseKeyFramePackets() const;
   // Loop closure's counts; null without loop.enabled.
   const LoopClosureCounts* loopCounts() const { return mapper_.loopCounts(); }
   const Map& map() const { return map_; }

@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""rostest: fr1_xyz_37 played slowly into both nodes; mapping_node is killed a third of the way in
+and started again a few frames later. The restarted mapper must notice what it missed, get the
+tracker's whole map and trajectory back, save a whole trajectory (every frame, ATE as offline) and
+a map that holds the keyframes it never received itself, and say its dense maps are partial."""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+
+import ros_test_support as support
+
+MAPPER = "/ply_slam/mapping_node"
+SAVE_MAP = MAPPER + "/save_map"
+
+
+class MapperRestart(unittest.TestCase):
+    def test_restarted_mapper_gets_the_map_back(self):
+        sequence = support.shared_path(rospy.get_param("~sequence"))
+        work = support.work_dir()
+        self.addCleanup(shutil.rmtree, work, True)
+        bag = os.path.join(work, "sequence.bag")
+        support.tum_to_bag(sequence, bag)
+        frames, offline_ate = support.offline_run(sequence, os.path.join(work, "offline"))
+
+        stats = support.StatsListener()
+        support.wait_for_nodes()
+        # 37 frames at rate 0.1: about 12 s of replay.
+        player = subprocess.Popen(["rosbag", "play", "--quiet", "--delay=1", "--rate=0.1", bag])
+        self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= 3, 60))
+        subprocess.run(["rosnode", "kill", MAPPER], check=True, capture_output=True)
+        down_at = stats.get("keyframes")
+        self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= down_at + 2, 60),
+                        "no keyframe while the mapper was down")
+        mapper = subprocess.Popen([support.tool("mapping_node"), "__name:=mapping_node",
+                                   "__ns:=/ply_slam"])
+        self.addCleanup(mapper.terminate)
+        self.assertEqual(player.wait(timeout=120), 0)
+        stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 60)
+        time.sleep(2)  # the last messages reach the mapper
+
+        trajectory = os.path.join(work, "trajectory.txt")
+        message = support.save_trajectory(trajectory)  # fails the test when not whole
+        ate = support.ate_rmse(sequence, trajectory)
+        folder = os.path.join(work, "map")
+        SaveToPath = support.import_service_type()
+        rospy.wait_for_service(SAVE_MAP, timeout=30)
+        saved = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(folder)
+        with open(os.path.join(folder, "keyframes.csv")) as f:
+            ids = [int(row["id"]) for row in csv.DictReader(f)]
+        print("stats %s; trajectory: %s, ATE %.6f m (offline %.6f); map: %s" % (
+            stats.values, message, ate["rmse"], offline_ate, saved.message))
+        self.assertEqual(stats.get("tracked"), frames)
+        self.assertEqual(ate["pairs"], frames, "poses lost while the mapper was down")
+        self.assertLessEqual(ate["rmse"], 1.5 * offline_ate)
+        self.assertIn(0, ids, "the first keyframe (sent before the restart) is not in the map")
+        self.assertFalse(saved.success, "the dense maps miss keyframes but save_map said success")
+        self.assertIn("dense maps lack", saved.message)
+
+
+if __name__ == "__main__":
+    rospy.init_node("mapper_restart_test")
+    rostest.rosrun("ply_slam", "mapper_restart_test", MapperRestart, sys.argv)
