@@ -38,20 +38,24 @@ else
   config="$(ply_slam_config_for "$sequence")"
 fi
 
-# The best segmenter at hand. A YOLO model joins with issue #5; until then the folder's own
-# instance masks (ground truth in the synthetic and the shared walkers sequences) or none.
-segmenter=none
+# The best segmenter at hand: the folder's own instance masks (ground truth in the synthetic and
+# the shared walkers sequences), else YOLOv8n-seg from the shared models, else none.
+segmenter_args=(--segmenter none)
+model="${PLY_SLAM_SHARED}/models/yolov8n-seg-480x640.onnx"  # file names are HxW, --input WxH
 if [ -d "${sequence}/masks" ] && [ -f "${sequence}/instances.txt" ]; then
-  segmenter=masks
-  echo "[demo] segmenter: the folder's instance masks (no YOLO segmenter is built yet)"
+  segmenter_args=(--segmenter masks)
+  echo "[demo] segmenter: the folder's instance masks"
+elif [ -f "$model" ]; then
+  segmenter_args=(--segmenter yolo --model "$model" --input 640x480)
+  echo "[demo] segmenter: YOLOv8n-seg ${model}"
 else
-  echo "[demo] segmenter: none (no instance masks in the folder; no YOLO segmenter is built yet)"
+  echo "[demo] segmenter: none (no instance masks in the folder, no model at ${model})"
 fi
 
 out="${PLY_SLAM_ROOT}/build/demo/$(basename "$sequence")"
 echo "[demo] running on ${sequence} with $(basename "$config")"
 "${PLY_SLAM_BIN}/ply_slam_tum" --sequence "$sequence" --config "$config" --out "$out" \
-  --segmenter "$segmenter"
+  "${segmenter_args[@]}"
 echo "[demo] trajectory plot: ${out}/trajectory.png"
 echo "[demo] trajectories, timing.csv and summary.json: ${out}/"
 echo "[demo] done in ${SECONDS} s after the build"

@@ -10,8 +10,9 @@
 
 namespace ply_slam {
 
-// The sparse map: keyframes, point and line landmarks. Containers are guarded by a mutex so the
-// mapping side can read while tracking inserts.
+// The sparse map: keyframes, point and line landmarks. The containers are guarded by a mutex;
+// the keyframes and landmarks in them are not: tracking and the mapping side run one after the
+// other on one thread (System), so nothing else touches them meanwhile.
 class Map {
  public:
   std::shared_ptr<KeyFrame> addKeyFrame(std::shared_ptr<KeyFrame> keyframe);

@@ -20,7 +20,7 @@ const char* toString(TrackingState state);
 struct TrackingResult {
   TrackingState state = TrackingState::kNotInitialised;
   Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
-  int inliers = 0;                         // point inliers
+  int inliers = 0;  // point inliers; at initialisation the points created (nothing to match yet)
   int line_inliers = 0;                    // line inliers (0 when lines are disabled)
   std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
   std::string method;                      // how the pose was found: init, motion, pnp, reloc
