@@ -10,7 +10,7 @@ namespace ply_slam {
 
 // grid.png: the occupancy grid as map_server shows it (black occupied, white free, grey
 // unknown), seen from above with the floor frame's x to the right, the camera path on the
-// floor, a 1 m scale bar and a title.
+// floor (the view grows to hold it), a 1 m scale bar and a title.
 class GridRenderer {
  public:
   explicit GridRenderer(int max_map_px = 900);
