@@ -14,7 +14,7 @@ namespace ply_slam {
 // What the points that ended in one voxel said about it.
 struct VoxelHistogram {
   std::uint32_t hits = 0, tagged = 0;
-  std::uint32_t r = 0, g = 0, b = 0;                            // sums
+  std::uint32_t r = 0, g = 0, b = 0;                  // sums
   Eigen::Vector3f offsets = Eigen::Vector3f::Zero();  // sum of the hits less the voxel centre
   std::vector<std::pair<std::uint32_t, std::uint32_t>> labels;  // (label, count), few per voxel
 

@@ -20,7 +20,7 @@ class FloorFrameEstimator {
   explicit FloorFrameEstimator(const OccupancyGridOptions& options);
 
   // `points`: where the occupied voxels of static things hold their surface (SLAM world),
-  // `voxel_size` their edge; `trajectory`: camera poses, the first places the frame's origin and x axis.
+  // `voxel_size` their edge; `trajectory`: camera poses (the first places the frame).
   FloorFrame estimate(const std::vector<Eigen::Vector3d>& points, double voxel_size,
                       const Trajectory& trajectory) const;
 
