@@ -83,6 +83,24 @@ TEST(FloorFrameEstimator, FindsATiltedFloorPlaneUnderAPitchedCamera) {
   }
 }
 
+// A camera over a desk: 2 x 2 m of desk top 0.7 m up, but only 1.2 x 1.2 m of floor in view.
+TEST(FloorFrameEstimator, TheFloorUnderALargerDeskTop) {
+  TiltedRoom room(-20.0 * kPi / 180.0);
+  std::vector<Eigen::Vector3d> points;
+  for (double x = -1; x < 1; x += 0.05)
+    for (double y = -1; y < 1; y += 0.05)
+      points.push_back((room.floor_height + 0.7) * room.up + x * room.e1 + y * room.e2);
+  for (double x = 1.2; x < 2.4; x += 0.05)
+    for (double y = -0.6; y < 0.6; y += 0.05)
+      points.push_back(room.floor_height * room.up + x * room.e1 + y * room.e2);
+  const FloorFrame floor =
+      FloorFrameEstimator(OccupancyGridOptions()).estimate(points, 0.05, room.trajectory);
+  EXPECT_EQ(floor.method, "plane");
+  EXPECT_NEAR(room.up.dot(floor.T_world_floor.translation()), room.floor_height, 0.01);
+  EXPECT_GE(floor.support, 550u);  // the floor's 24 x 24 (or 25) points, not the desk's 1600
+  EXPECT_LE(floor.support, 650u);
+}
+
 TEST(FloorFrameEstimator, GivenFloorAndFallbackWithoutAFloor) {
   OccupancyGridOptions given;
   given.floor = "given";

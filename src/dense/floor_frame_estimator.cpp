@@ -106,6 +106,22 @@ Plane floorPlane(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector
   return best;
 }
 
+// The floor is the lowest of the large level planes: a hand-held camera over a desk may see
+// more desk top than floor. Below the best plane, a plane with a quarter of its support wins.
+Plane lowestPlane(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& up,
+                  double tolerance) {
+  Plane best = floorPlane(points, up, tolerance);
+  while (best.support >= kMinSupport) {
+    std::vector<Eigen::Vector3d> lower;
+    for (const auto& p : points)
+      if (best.normal.dot(p) < best.offset - 3.0 * tolerance) lower.push_back(p);
+    const Plane below = floorPlane(lower, up, tolerance);
+    if (below.support < std::max(kMinSupport, best.support / 4)) break;
+    best = below;
+  }
+  return best;
+}
+
 }  // namespace
 
 FloorFrameEstimator::FloorFrameEstimator(const OccupancyGridOptions& options) : options_(options) {}
@@ -145,7 +161,7 @@ FloorFrame FloorFrameEstimator::estimate(const std::vector<Eigen::Vector3d>& poi
   for (const auto& p : points)
     if (up.dot(p) < lowest_camera) below.push_back(p);
 
-  const Plane plane = floorPlane(below, up, voxel_size);
+  const Plane plane = lowestPlane(below, up, voxel_size);
   if (plane.support >= kMinSupport) {
     floor.T_world_floor = frameOn(plane.normal, plane.offset, trajectory);
     floor.method = "plane";

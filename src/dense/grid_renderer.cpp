@@ -55,7 +55,11 @@ cv::Mat GridRenderer::render(const OccupancyGrid& grid, const Trajectory& trajec
   drawScaleBar(map, px_per_m);
 
   const int title_h = 30;
-  cv::Mat image(map.rows + title_h, std::max(map.cols, 400), CV_8UC3, cv::Scalar(255, 255, 255));
+  int baseline = 0;
+  const int title_w =
+      cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, 0.55, 1, &baseline).width + 16;
+  cv::Mat image(map.rows + title_h, std::max(map.cols, title_w), CV_8UC3,
+                cv::Scalar(255, 255, 255));
   map.copyTo(image(cv::Rect(0, title_h, map.cols, map.rows)));
   cv::putText(image, title, cv::Point(8, 21), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0),
               1, cv::LINE_AA);
