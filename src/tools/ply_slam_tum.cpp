@@ -211,6 +211,11 @@ std::string writeGrid(const SemanticOctree& octree, const SystemConfig& config,
   GridRenderer().write((out / "grid.png").string(), grid, trajectory,
                        title + "   occupancy grid (" + grid.floor().method + " floor)");
   const Eigen::Vector3d up = grid.floor().T_world_floor.linear().col(2);
+  // The first camera's height above the floor found: a check against the rig's height.
+  const double camera_height =
+      trajectory.empty()
+          ? 0.0
+          : (grid.floor().T_world_floor.inverse() * trajectory.front().T_wc.translation()).z();
   std::ostringstream json;
   json << ",\n  \"grid\": {\"width\": " << grid.width() << ", \"height\": " << grid.height()
        << ", \"resolution\": " << grid.resolution()
@@ -218,7 +223,8 @@ std::string writeGrid(const SemanticOctree& octree, const SystemConfig& config,
        << ", \"free\": " << grid.count(OccupancyGrid::kFree)
        << ", \"unknown\": " << grid.count(OccupancyGrid::kUnknown) << ", \"floor\": \""
        << grid.floor().method << "\", \"floor_support\": " << grid.floor().support << ", \"up\": ["
-       << up.x() << ", " << up.y() << ", " << up.z() << "], \"ms\": " << ms << "}";
+       << up.x() << ", " << up.y() << ", " << up.z()
+       << "], \"first_camera_height\": " << camera_height << ", \"ms\": " << ms << "}";
   std::cout << "occupancy grid " << grid.width() << " x " << grid.height() << " cells, "
             << grid.count(OccupancyGrid::kOccupied) << " occupied, "
             << grid.count(OccupancyGrid::kFree) << " free (" << grid.floor().method << " floor)\n";
