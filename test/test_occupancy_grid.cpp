@@ -163,8 +163,11 @@ TEST(OccupancyGridBuilder, APersonTheOctreeKeepsOccupiesNoCell) {
   EXPECT_EQ(state(grid, 1.0, 0.0), OccupancyGrid::kFree);
   EXPECT_EQ(state(grid, 2.5, beside), OccupancyGrid::kFree);
   int i = 0, j = 0;
-  for (double left = -0.15; left <= 0.23; left += 0.01)
-    if (grid.cellOf({person, left}, &i, &j)) EXPECT_NE(grid.at(i, j), OccupancyGrid::kOccupied);
+  for (double left = -0.15; left <= 0.23; left += 0.01) {
+    if (grid.cellOf({person, left}, &i, &j)) {
+      EXPECT_NE(grid.at(i, j), OccupancyGrid::kOccupied) << left;
+    }
+  }
   // Without the class the person is an obstacle.
   const OccupancyGrid blind = OccupancyGridBuilder(options, {}).build(octree, floor);
   EXPECT_EQ(state(blind, person, 0.0), OccupancyGrid::kOccupied);
