@@ -58,4 +58,8 @@ echo "[demo] running on ${sequence} with $(basename "$config")"
   "${segmenter_args[@]}"
 echo "[demo] trajectory plot: ${out}/trajectory.png"
 echo "[demo] trajectories, timing.csv and summary.json: ${out}/"
+if [[ -f "${out}/grid.png" ]]; then
+  echo "[demo] semantic octree from above: ${out}/map_top.png; occupancy grid: ${out}/grid.png" \
+    "(map.pgm + map.yaml for map_server)"
+fi
 echo "[demo] done in ${SECONDS} s after the build"

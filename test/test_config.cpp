@@ -320,6 +320,42 @@ TEST_F(ConfigFileTest, DenseSection) {
                     {"dense.voxel", "not a known key"});
 }
 
+// The grid section: values are read, the up vector normalised, bad ones named.
+TEST_F(ConfigFileTest, GridSection) {
+  const std::string base = kValidYaml;
+  const SystemConfig config = loadConfig(
+      write("grid.yaml", base + "grid:\n  robot_height: 0.4\n  floor: given\n  up: [0, -2, 0]\n"
+                                "  floor_height: -0.8\n"));
+  EXPECT_DOUBLE_EQ(config.grid.robot_height, 0.4);
+  EXPECT_EQ(config.grid.floor, "given");
+  EXPECT_DOUBLE_EQ(config.grid.up.y(), -1.0);
+  EXPECT_DOUBLE_EQ(config.grid.floor_height, -0.8);
+  EXPECT_DOUBLE_EQ(config.grid.floor_clearance, OccupancyGridOptions().floor_clearance);
+  expectConfigError(write("floor.yaml", base + "grid:\n  floor: lowest\n"),
+                    {"grid.floor", "auto or given"});
+  expectConfigError(
+      write("band.yaml", base + "grid:\n  floor_clearance: 0.3\n  robot_height: 0.2\n"),
+      {"grid.robot_height", "floor_clearance"});
+  expectConfigError(write("up.yaml", base + "grid:\n  up: [0, 1]\n"), {"grid.up", "3 numbers"});
+  expectConfigError(write("zero.yaml", base + "grid:\n  up: [0, 0, 0]\n"), {"grid.up"});
+  expectConfigError(write("res.yaml", base + "grid:\n  resolution: 0\n"), {"grid.resolution"});
+  expectConfigError(write("key.yaml", base + "grid:\n  height: 0.3\n"),
+                    {"grid.height", "not a known key"});
+}
+
+// Every shipped file has the grid of a TurtleBot3 on a floor found from the data.
+TEST(ShippedConfig, GridForATurtleBot3) {
+  for (const char* file :
+       {"tum_fr1.yaml", "tum_fr2.yaml", "tum_fr3.yaml", "d435i.yaml", "bonn.yaml"}) {
+    const OccupancyGridOptions grid = loadConfig(kConfigDir + file).grid;
+    EXPECT_TRUE(grid.enabled) << file;
+    EXPECT_EQ(grid.floor, "auto") << file;
+    EXPECT_DOUBLE_EQ(grid.resolution, 0.05) << file;
+    EXPECT_DOUBLE_EQ(grid.floor_clearance, 0.1) << file;
+    EXPECT_DOUBLE_EQ(grid.robot_height, 0.25) << file;
+  }
+}
+
 TEST_F(ConfigFileTest, LinesSurfaceBand) {
   const std::string base = kValidYaml;
   EXPECT_EQ(

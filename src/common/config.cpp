@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "ply_slam/common/config_section.h"
+#include "ply_slam/dense/occupancy_grid_options_yaml.h"
 #include "ply_slam/loop/loop_options_yaml.h"
 #include "ply_slam/mapping/culling_options_yaml.h"
 #include "ply_slam/mapping/loop_correction_options_yaml.h"
@@ -221,6 +222,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   readTracking(top.child("tracking"), config.tracking);
   readDynamic(top.child("dynamic"), config.dynamic);
   readDense(top.child("dense"), config.dense);
+  config.grid = readOccupancyGridOptions(top.child("grid"));
   config.loop = readLoopOptions(top.child("loop"));
   config.loop.depth_noise = config.camera.depth_noise;
   config.loop_correction = readLoopCorrectionOptions(top.child("loop_correction"));

@@ -14,13 +14,15 @@ namespace ply_slam {
 // What the points that ended in one voxel said about it.
 struct VoxelHistogram {
   std::uint32_t hits = 0, tagged = 0;
-  std::uint32_t r = 0, g = 0, b = 0;                            // sums
+  std::uint32_t r = 0, g = 0, b = 0;                  // sums
+  Eigen::Vector3f offsets = Eigen::Vector3f::Zero();  // sum of the hits less the voxel centre
   std::vector<std::pair<std::uint32_t, std::uint32_t>> labels;  // (label, count), few per voxel
 
-  void add(const pcl::PointXYZRGBL& p, bool tag) {
+  void add(const pcl::PointXYZRGBL& p, const Eigen::Vector3f& offset, bool tag) {
     ++hits;
     tagged += tag;
     r += p.r, g += p.g, b += p.b;
+    offsets += offset;
     for (auto& [label, count] : labels)
       if (label == p.label) {
         ++count;
@@ -93,8 +95,12 @@ void SemanticOctree::insert(const KeyFrameCloud& cloud) {
   octomap::OcTreeKey key;
   for (size_t i = 0; i < cloud.points->size(); ++i) {
     const Eigen::Vector3f w = T_wc * cloud.points->points[i].getVector3fMap();
-    if (castTo(octomap::point3d(w.x(), w.y(), w.z()), occupied, ray_margin_, key))
-      impl_->voxels[key].add(cloud.points->points[i], cloud.tags && cloud.tags->points[i].label);
+    if (castTo(octomap::point3d(w.x(), w.y(), w.z()), occupied, ray_margin_, key)) {
+      const octomap::point3d centre = tree.keyToCoord(key);
+      impl_->voxels[key].add(cloud.points->points[i],
+                             w - Eigen::Vector3f(centre.x(), centre.y(), centre.z()),
+                             cloud.tags && cloud.tags->points[i].label);
+    }
   }
   for (const Eigen::Vector3f& p : cloud.clearing_rays) {
     const Eigen::Vector3f w = T_wc * p;
@@ -138,12 +144,14 @@ std::vector<SemanticOctree::Voxel> SemanticOctree::occupiedVoxels() const {
     Voxel v;
     const octomap::point3d c = it.getCoordinate();
     v.centre = {c.x(), c.y(), c.z()};
+    v.surface = v.centre;
     v.size = it.getSize();
     const auto h = impl_->voxels.find(it.getKey());
     if (h != impl_->voxels.end()) {
       v.label = h->second.majority();
       v.hits = h->second.hits;
       v.tagged = h->second.tagged;
+      if (v.hits > 0) v.surface += (h->second.offsets / v.hits).cast<double>();
     }
     const octomap::ColorOcTreeNode::Color colour = it->getColor();
     v.colour = {colour.r, colour.g, colour.b};

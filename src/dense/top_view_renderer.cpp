@@ -8,6 +8,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "ply_slam/dense/map_drawing.h"
+
 namespace ply_slam {
 namespace {
 
@@ -99,26 +101,13 @@ cv::Mat TopViewRenderer::render(const std::vector<SemanticOctree::Voxel>& voxels
     ++columns_per_label[v->label];
   }
 
-  // Trajectory: a dark line with a white casing, start circle, end square.
-  if (!trajectory.empty()) {
-    std::vector<cv::Point> line;
-    for (const auto& p : trajectory) {
-      const cv::Point2d q = toPixel(p.T_wc.translation());
-      line.emplace_back(std::lround(q.x), std::lround(q.y));
-    }
-    cv::polylines(map, line, false, cv::Scalar(255, 255, 255), 5, cv::LINE_AA);
-    cv::polylines(map, line, false, cv::Scalar(40, 40, 40), 2, cv::LINE_AA);
-    cv::circle(map, line.front(), 6, cv::Scalar(0, 160, 0), cv::FILLED, cv::LINE_AA);
-    cv::rectangle(map, line.back() - cv::Point(5, 5), line.back() + cv::Point(5, 5),
-                  cv::Scalar(0, 0, 200), cv::FILLED);
+  std::vector<cv::Point> path;
+  for (const auto& p : trajectory) {
+    const cv::Point2d q = toPixel(p.T_wc.translation());
+    path.emplace_back(std::lround(q.x), std::lround(q.y));
   }
-
-  // 1 m scale bar in the bottom-left corner.
-  const int bar = static_cast<int>(std::lround(px_per_m));
-  const cv::Point bar_start(15, map_h - 15);
-  cv::line(map, bar_start, bar_start + cv::Point(bar, 0), cv::Scalar(0, 0, 0), 3);
-  cv::putText(map, "1 m", bar_start + cv::Point(0, -8), cv::FONT_HERSHEY_SIMPLEX, 0.5,
-              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  drawTrajectory(map, path);
+  drawScaleBar(map, px_per_m);
 
   cv::putText(image, title, cv::Point(8, 21), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0),
               1, cv::LINE_AA);

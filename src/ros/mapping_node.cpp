@@ -13,11 +13,15 @@
 #include <filesystem>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/dense/grid_map_files.h"
+#include "ply_slam/dense/grid_renderer.h"
 #include "ply_slam/dense/map_export.h"
+#include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/dense_map_messages.h"
+#include "ply_slam/ros/grid_map_message.h"
 
 namespace ply_slam {
 namespace {
@@ -76,6 +80,7 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
                      .toRotationMatrix();
     static_broadcaster_.sendTransform(
         toTransformMsg(T, ros::Time::now(), map_frame_, world_frame_));
+    T_map_world_ = T;
   }
 
   points_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("map_points", 1, true);
@@ -94,6 +99,14 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     const double period = pnh_.param("dense_publish_period", 2.0);
     if (!(period > 0.0)) throw std::invalid_argument("~dense_publish_period must be > 0 s");
     dense_timer_ = nh_.createTimer(ros::Duration(period), &MappingNode::publishDense, this);
+  }
+  if (config.dense.enabled && config.grid.enabled) {
+    grid_options_ = config.grid;
+    moving_classes_ = config.dynamic.active_classes;
+    grid_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("grid_map", 1, true);
+    const double period = pnh_.param("grid_publish_period", 2.0);
+    if (!(period > 0.0)) throw std::invalid_argument("~grid_publish_period must be > 0 s");
+    grid_timer_ = nh_.createTimer(ros::Duration(period), &MappingNode::publishGrid, this);
   }
 
   keyframe_sub_ = nh_.subscribe(pnh_.param<std::string>("keyframe_topic", "tracking_node/keyframe"),
@@ -446,6 +459,36 @@ void MappingNode::publishDense(const ros::TimerEvent&) {
   octomap_cloud_pub_.publish(toVoxelCloudMsg(voxels, header));
 }
 
+OccupancyGrid MappingNode::buildGrid(const Trajectory& trajectory,
+                                     const std::optional<Eigen::Isometry3d>& T_map_world,
+                                     Eigen::Isometry3d* T_frame_floor, std::string* grid_frame) {
+  OccupancyGrid grid;
+  dense_->withMaps([&](DenseMap&, const SemanticOctree& octree) {
+    const OccupancyGridBuilder builder(
+        grid_options_, OccupancyGridBuilder::labelsOf(octree.palette(), moving_classes_));
+    grid = builder.build(octree, trajectory);
+  });
+  *grid_frame = T_map_world ? map_frame_ : world_frame_;
+  *T_frame_floor = T_map_world ? Eigen::Isometry3d(*T_map_world * grid.floor().T_world_floor)
+                               : grid.floor().T_world_floor;
+  return grid;
+}
+
+void MappingNode::publishGrid(const ros::TimerEvent&) {
+  Trajectory trajectory;
+  std::optional<Eigen::Isometry3d> T_map_world;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    trajectory = cameraTrajectory();
+    T_map_world = T_map_world_;
+  }
+  Eigen::Isometry3d T_frame_floor;
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  const OccupancyGrid grid = buildGrid(trajectory, T_map_world, &T_frame_floor, &header.frame_id);
+  grid_pub_.publish(toGridMsg(grid, T_frame_floor, header));
+}
+
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
   try {
@@ -456,6 +499,15 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
       });
     writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
                        cameraTrajectory());
+    if (grid_pub_) {  // map.pgm + map.yaml in the frame ~grid_map is published in, grid.png
+      Eigen::Isometry3d T_frame_floor;
+      std::string frame;
+      const Trajectory trajectory = cameraTrajectory();
+      const OccupancyGrid grid = buildGrid(trajectory, T_map_world_, &T_frame_floor, &frame);
+      writeGridMap(request.path, grid, T_frame_floor);
+      GridRenderer().write((std::filesystem::path(request.path) / "grid.png").string(), grid,
+                           trajectory, "occupancy grid (" + frame + ")");
+    }
     const std::string partial = partialReason(true);
     response.success = partial.empty();
     response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +

@@ -4,7 +4,8 @@
 //                [--save-images N] [--max-frames N] [--no-lines] [--ground-truth-masks DIR]
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
 // trajectory.png into DIR, and with dense.enabled the dense maps (dense_map.pcd/.ply,
-// semantic_octree.ot, octree.bt, map_legend.txt, map_top.png).
+// semantic_octree.ot, octree.bt, map_legend.txt, map_top.png) and, with grid.enabled, the
+// occupancy grid (map.pgm + map.yaml for map_server, grid.png).
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -25,7 +26,10 @@
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
+#include "ply_slam/dense/grid_map_files.h"
+#include "ply_slam/dense/grid_renderer.h"
 #include "ply_slam/dense/map_export.h"
+#include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/dense/top_view_renderer.h"
 #include "ply_slam/eval/feature_classification.h"
 #include "ply_slam/eval/trajectory_metrics.h"
@@ -194,9 +198,42 @@ std::unique_ptr<MaskFolderSegmenter> groundTruthMasks(const Options& options,
 
 // Drains the worker, re-places keyframes at their final poses, writes the maps and
 // map_top.png; returns the summary.json fields.
+// The occupancy grid from the octree: map.pgm, map.yaml (in the floor frame) and grid.png;
+// returns the summary's "grid" member.
+std::string writeGrid(const SemanticOctree& octree, const SystemConfig& config,
+                      const Trajectory& trajectory, const fs::path& out, const std::string& title) {
+  Stopwatch watch;
+  const OccupancyGridBuilder builder(
+      config.grid, OccupancyGridBuilder::labelsOf(octree.palette(), config.dynamic.active_classes));
+  const OccupancyGrid grid = builder.build(octree, trajectory);
+  const double ms = watch.elapsedMs();
+  writeGridMap(out.string(), grid);
+  GridRenderer().write((out / "grid.png").string(), grid, trajectory,
+                       title + "   occupancy grid (" + grid.floor().method + " floor)");
+  const Eigen::Vector3d up = grid.floor().T_world_floor.linear().col(2);
+  // The first camera's height above the floor found: a check against the rig's height.
+  const double camera_height =
+      trajectory.empty()
+          ? 0.0
+          : (grid.floor().T_world_floor.inverse() * trajectory.front().T_wc.translation()).z();
+  std::ostringstream json;
+  json << ",\n  \"grid\": {\"width\": " << grid.width() << ", \"height\": " << grid.height()
+       << ", \"resolution\": " << grid.resolution()
+       << ", \"occupied\": " << grid.count(OccupancyGrid::kOccupied)
+       << ", \"free\": " << grid.count(OccupancyGrid::kFree)
+       << ", \"unknown\": " << grid.count(OccupancyGrid::kUnknown) << ", \"floor\": \""
+       << grid.floor().method << "\", \"floor_support\": " << grid.floor().support << ", \"up\": ["
+       << up.x() << ", " << up.y() << ", " << up.z()
+       << "], \"first_camera_height\": " << camera_height << ", \"ms\": " << ms << "}";
+  std::cout << "occupancy grid " << grid.width() << " x " << grid.height() << " cells, "
+            << grid.count(OccupancyGrid::kOccupied) << " occupied, "
+            << grid.count(OccupancyGrid::kFree) << " free (" << grid.floor().method << " floor)\n";
+  return json.str();
+}
+
 std::string finishDenseMaps(DenseMappingWorker& dense, const System& system,
-                            const Trajectory& trajectory, const fs::path& out,
-                            const std::string& title, bool counted_walkers) {
+                            const SystemConfig& config, const Trajectory& trajectory,
+                            const fs::path& out, const std::string& title, bool counted_walkers) {
   MapUpdate final_poses;
   for (const auto& keyframe : system.map().keyFrames())
     if (keyframe) final_poses.keyframes.push_back({keyframe->id, keyframe->T_wc()});
@@ -242,6 +279,7 @@ std::string finishDenseMaps(DenseMappingWorker& dense, const System& system,
            << (voxels.empty() ? 0.0 : double(walker_any) / voxels.size()) << "}";
     }
     json << "}";
+    if (config.grid.enabled) json << writeGrid(octree, config, trajectory, out, title);
     std::cout << "dense map " << points << " points, octree " << voxels.size()
               << " occupied voxels; dense+octree ms per keyframe median " << percentile(ms, 0.5)
               << ", p95 " << percentile(ms, 0.95) << "\n";
@@ -448,7 +486,8 @@ int run(const Options& options) {
               << " deg per frame\n";
   }
   if (dense)
-    json << finishDenseMaps(*dense, system, trajectory, out, title, walker_masks != nullptr);
+    json << finishDenseMaps(*dense, system, config, trajectory, out, title,
+                            walker_masks != nullptr);
   if (!failure.empty()) json << ",\n  \"error\": \"" << jsonEscape(failure) << "\"";
   json << "\n}\n";
   std::ofstream(out / "summary.json") << json.str();

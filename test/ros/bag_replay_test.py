@@ -2,7 +2,8 @@
 """rostest: converts a shared TUM sequence to a bag at test time (TUM or D435i topics), plays it
 at rate 1 into the running tracking_node + mapping_node, saves the trajectory through the
 mapper's service and checks: every frame synchronised and tracked, ATE within the allowed factor
-of the offline ply_slam_tum run on the same frames."""
+of the offline ply_slam_tum run on the same frames; the occupancy grid is published and saved in
+map_server's format."""
 import os
 import shutil
 import subprocess
@@ -42,6 +43,7 @@ class BagReplay(unittest.TestCase):
         self.assertEqual(stats.get("tracked"), offline_frames)
         self.assertEqual(ate["pairs"], offline_frames)
         self.assertLessEqual(ate["rmse"], factor * offline_ate)
+        support.check_grid(self, os.path.join(work, "saved_map"))
 
 
 if __name__ == "__main__":

@@ -16,6 +16,8 @@ from std_msgs.msg import String
 PACKAGE_DIR = rospkg.RosPack().get_path("ply_slam")
 STATS_TOPIC = "/ply_slam/tracking_node/stats"
 SAVE_TRAJECTORY = "/ply_slam/mapping_node/save_trajectory"
+SAVE_MAP = "/ply_slam/mapping_node/save_map"
+GRID_TOPIC = "/ply_slam/mapping_node/grid_map"
 
 
 def shared_path(relative):
@@ -102,13 +104,49 @@ def import_service_type():
     return SaveToPath
 
 
-def save_trajectory(path):
+def call_save(service, path):
+    """Calls one of the mapper's SaveToPath services; raises when it reports a failure."""
     SaveToPath = import_service_type()
-    rospy.wait_for_service(SAVE_TRAJECTORY, timeout=30)
-    response = rospy.ServiceProxy(SAVE_TRAJECTORY, SaveToPath)(path)
+    rospy.wait_for_service(service, timeout=30)
+    response = rospy.ServiceProxy(service, SaveToPath)(path)
     if not response.success:
-        raise AssertionError("save_trajectory failed: " + response.message)
+        raise AssertionError(service + " failed: " + response.message)
     return response.message
+
+
+def save_trajectory(path):
+    return call_save(SAVE_TRAJECTORY, path)
+
+
+def check_grid(test, folder):
+    """The latched ~grid_map arrives and is consistent; save_map wrote map.yaml with
+    map_server's documented fields and a map.pgm of the message's size and values."""
+    from nav_msgs.msg import OccupancyGrid
+    grid = rospy.wait_for_message(GRID_TOPIC, OccupancyGrid, timeout=10)
+    test.assertEqual(len(grid.data), grid.info.width * grid.info.height)
+    test.assertTrue(set(grid.data) <= {-1, 0, 100})
+    test.assertIn(grid.header.frame_id, ("map", "ply_slam_world"))
+    call_save(SAVE_MAP, folder)
+    fields = {}
+    with open(os.path.join(folder, "map.yaml")) as f:
+        for line in f:
+            key, _, value = line.partition(":")
+            fields[key.strip()] = value.strip()
+    test.assertEqual(fields["image"], "map.pgm")
+    test.assertAlmostEqual(float(fields["resolution"]), grid.info.resolution, places=6)
+    test.assertEqual(len(fields["origin"].strip("[]").split(",")), 3)
+    test.assertEqual(fields["negate"], "0")
+    test.assertGreater(float(fields["occupied_thresh"]), float(fields["free_thresh"]))
+    with open(os.path.join(folder, "map.pgm"), "rb") as f:
+        test.assertEqual(f.readline().strip(), b"P5")
+        line = f.readline()
+        while line.startswith(b"#"):
+            line = f.readline()
+        width, height = (int(v) for v in line.split())
+        f.readline()  # maxval
+        pixels = set(f.read())
+    test.assertGreater(width * height, 0)
+    test.assertTrue(pixels <= {0, 205, 254})
 
 
 def wait_for_nodes(timeout=30):

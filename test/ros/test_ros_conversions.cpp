@@ -4,6 +4,7 @@
 #include <ros/serialization.h>
 
 #include "ply_slam/ros/conversions.h"
+#include "ply_slam/ros/grid_map_message.h"
 
 namespace ply_slam {
 namespace {
@@ -155,6 +156,28 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   EXPECT_EQ(v.merged_points[1].to, 14);
   EXPECT_EQ(v.erased_keyframes, (std::vector<long>{2, 3}));
   EXPECT_TRUE(v.whole_map);
+}
+
+// The grid message: cells as stored, and info.origin the pose of cell (0, 0)'s corner in the
+// message's frame.
+TEST(RosConversions, OccupancyGridMessage) {
+  FloorFrame floor;
+  floor.T_world_floor = somePose(0.4);
+  OccupancyGrid grid(3, 2, 0.05, Eigen::Vector2d(-0.5, 0.25), floor);
+  grid.set(2, 0, OccupancyGrid::kOccupied);
+  grid.set(0, 1, OccupancyGrid::kFree);
+  std_msgs::Header header;
+  header.frame_id = "map";
+  const Eigen::Isometry3d T_map_floor = somePose(0.9);
+  const nav_msgs::OccupancyGrid msg = throughWire(toGridMsg(grid, T_map_floor, header));
+  EXPECT_EQ(msg.header.frame_id, "map");
+  EXPECT_EQ(msg.info.width, 3u);
+  EXPECT_EQ(msg.info.height, 2u);
+  EXPECT_FLOAT_EQ(msg.info.resolution, 0.05f);
+  EXPECT_EQ(msg.data, (std::vector<std::int8_t>{-1, -1, 100, 0, -1, -1}));
+  Eigen::Isometry3d corner = T_map_floor;
+  corner.translation() = T_map_floor * Eigen::Vector3d(-0.5, 0.25, 0.0);
+  expectSamePose(fromPoseMsg(msg.info.origin), corner);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/dense/occupancy_grid_options.h"
 #include "ply_slam/loop/loop_options.h"
 #include "ply_slam/mapping/culling_options.h"
 #include "ply_slam/mapping/loop_correction_options.h"
@@ -165,7 +166,8 @@ struct SystemConfig {
   YoloParams segmentation;
   DynamicParams dynamic;
   DenseParams dense;
-  LoopOptions loop;  // place recognition (loop module); its depth noise is the camera's
+  OccupancyGridOptions grid;  // 2D occupancy grid from the octree (dense module)
+  LoopOptions loop;           // place recognition (loop module); its depth noise is the camera's
   LoopCorrectionOptions loop_correction;  // closing an accepted loop (mapping module)
   CullingOptions culling;                 // retiring keyframes and points (mapping module)
 };

@@ -19,6 +19,8 @@
 #include "ply_slam/common/message_sequence.h"
 #include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
+#include "ply_slam/dense/occupancy_grid.h"
+#include "ply_slam/dense/occupancy_grid_options.h"
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/ros/bad_input_log.h"
@@ -55,6 +57,13 @@ class MappingNode {
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   void publishMap(const ros::Time& stamp);
   void publishDense(const ros::TimerEvent& event);
+  void publishGrid(const ros::TimerEvent& event);
+  // The occupancy grid of the octree now, and where its floor frame lies in the frame it is
+  // published and saved in (`grid_frame`: map when the map -> world placement is known).
+  // Takes no lock of its own but the maps': callers pass what they read under mutex_.
+  OccupancyGrid buildGrid(const Trajectory& trajectory,
+                          const std::optional<Eigen::Isometry3d>& T_map_world,
+                          Eigen::Isometry3d* T_frame_floor, std::string* grid_frame);
   void broadcastTf(const ros::Time& stamp, const Eigen::Isometry3d& T_world_camera);
 
   ros::NodeHandle nh_, pnh_;
@@ -87,12 +96,19 @@ class MappingNode {
   std::unique_ptr<DenseMappingWorker> dense_;
   ros::Publisher dense_cloud_pub_, octomap_markers_pub_, octomap_cloud_pub_;
   ros::Timer dense_timer_;
+  // The 2D occupancy grid from the octree (config's grid section), latched on ~grid_map.
+  OccupancyGridOptions grid_options_;
+  std::vector<std::string> moving_classes_;  // dynamic.active_classes: never obstacles
+  ros::Publisher grid_pub_;
+  ros::Timer grid_timer_;
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
-  std::optional<Eigen::Isometry3d> T_map_world_;  // with odometry: map = base at the start
+  // Where the SLAM world lies in map: with odometry, the camera's odom pose at the first frame;
+  // without, ~world_in_map when given.
+  std::optional<Eigen::Isometry3d> T_map_world_;
 };
 
 }  // namespace ply_slam
