@@ -9,6 +9,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "ply_slam/io/atomic_file.h"
+
 namespace ply_slam {
 
 std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& dense,
@@ -26,10 +28,12 @@ std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& den
   to_write.width = static_cast<std::uint32_t>(to_write.size());
   to_write.height = 1;
   if (!to_write.empty()) {
-    if (pcl::io::savePCDFileBinary(pcd, to_write) != 0)
-      throw std::runtime_error("cannot write " + pcd);
-    if (pcl::io::savePLYFileBinary(ply, to_write) != 0)
-      throw std::runtime_error("cannot write " + ply);
+    writeFileAtomically(pcd, [&](const std::string& temp) {
+      return pcl::io::savePCDFileBinary(temp, to_write) == 0;
+    });
+    writeFileAtomically(ply, [&](const std::string& temp) {
+      return pcl::io::savePLYFileBinary(temp, to_write) == 0;
+    });
     written.push_back(pcd);
     written.push_back(ply);
   }

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "ply_slam/io/atomic_file.h"
+
 namespace ply_slam {
 namespace {
 
@@ -93,10 +95,8 @@ Trajectory readTumTrajectory(const std::string& path) {
 }
 
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
-  std::ofstream out(path);
-  if (!out) {
-    throw std::runtime_error("cannot open trajectory file '" + path + "' for writing");
-  }
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out << "# timestamp tx ty tz qx qy qz qw\n";
   for (const StampedPose& pose : trajectory) {
     Eigen::Quaterniond q(pose.T_wc.linear());
@@ -108,10 +108,7 @@ void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
         << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' '
         << q.w() << '\n';
   }
-  out.close();
-  if (!out) {
-    throw std::runtime_error("error while writing trajectory file '" + path + "'");
-  }
+  file.commit();
 }
 
 }  // namespace ply_slam
