@@ -305,6 +305,11 @@ TEST_F(ConfigFileTest, NotFiniteOrAbsurdNumbersNameTheKey) {
                     {"dense.voxel_size", "finite"});
   expectConfigError(write("nan_drift.yaml", base + "loop_correction:\n  max_drift_floor_m: .nan\n"),
                     {"loop_correction.max_drift_floor_m"});
+  // Finite but absurd: both crashed ply_slam_tum (a sweep of every key at +-1e9 / 1e+-300).
+  expectConfigError(write("stride.yaml", base + "dense:\n  stride: 1000000000\n"),
+                    {"dense.stride"});
+  expectConfigError(write("resolution.yaml", base + "dense:\n  octree_resolution: 1e-300\n"),
+                    {"dense.octree_resolution"});
 }
 
 // yaml-cpp keeps both copies of a repeated key and finds the first: the second would be

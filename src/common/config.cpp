@@ -180,14 +180,15 @@ void readDynamic(Section s, DynamicParams& d) {
 
 void readDense(Section s, DenseParams& d) {
   s.read("enabled", d.enabled);
-  s.readPositive("stride", d.stride);
+  // Beyond these the loops over pixels overflow and OctoMap's keys cannot cover a room.
+  s.readInRange("stride", d.stride, 1, 1000);
   s.readPositive("min_depth", d.min_depth);
   s.readPositive("max_depth", d.max_depth);
   if (d.max_depth <= d.min_depth) s.fail("max_depth", "must be > min_depth");
-  s.readPositive("voxel_size", d.voxel_size);
+  s.readInRange("voxel_size", d.voxel_size, 1e-4, 10.0);
   s.read("dilation_px", d.dilation_px);
   if (d.dilation_px < 0 || d.dilation_px > 50) s.fail("dilation_px", "must be within [0, 50]");
-  s.readPositive("octree_resolution", d.octree_resolution);
+  s.readInRange("octree_resolution", d.octree_resolution, 1e-3, 10.0);
   s.read("octree_occupancy", d.octree_occupancy);
   if (!(d.octree_occupancy >= 0.5 && d.octree_occupancy < 0.97))
     s.fail("octree_occupancy", "must be within [0.5, 0.97)");
