@@ -1,8 +1,12 @@
 // The tools as a user runs them: --help and unknown options, and the bad inputs of a hostile
 // user (a folder as the config, options that do nothing, a ground truth that does not fit the
 // run, outputs that cannot be written, duplicate and huge poses for ply_slam_eval).
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -172,6 +176,43 @@ TEST(ToolsCommandLine, AMapWithoutDenseCloudSaysSo) {
   // Two frames cannot be evaluated against the ground truth (ATE needs three): said too.
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_TRUE(contains(summary, "only 2 tracked frames")) << summary;
+}
+
+// The process's own high-water mark (MiB), from wait4: the figure summary.json must give.
+double runForPeakRssMb(const std::vector<std::string>& arguments, const fs::path& log) {
+  std::vector<char*> argv;
+  for (const auto& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return -1.0;
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? usage.ru_maxrss / 1024.0 : -1.0;
+}
+
+// peak_rss_mb was taken before the dense maps were finished: 186 MiB reported, 214 MiB used.
+TEST(ToolsCommandLine, PeakRssIsTheWholeRunsHighWaterMark) {
+  const std::string sequence = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
+  PLY_SLAM_REQUIRE_SHARED(sequence);
+  TempDir dir;
+  const double measured =
+      runForPeakRssMb({PLY_SLAM_TOOL_DIR "/ply_slam_tum", "--sequence", sequence, "--config",
+                       std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml", "--out",
+                       (dir.path() / "out").string(), "--no-loop"},
+                      dir.path() / "log.txt");
+  ASSERT_GT(measured, 0.0) << readAll(dir.path() / "log.txt");
+  const std::string summary = readAll(dir.path() / "out" / "summary.json");
+  const size_t at = summary.find("\"peak_rss_mb\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  const double reported = std::stod(summary.substr(at + 15));
+  EXPECT_NEAR(reported, measured, 0.02 * measured) << "reported " << reported << " MiB";
 }
 
 void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
