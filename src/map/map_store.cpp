@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
 namespace ply_slam {
@@ -51,11 +52,14 @@ void MapStore::save(const std::string& folder) const {
   namespace fs = std::filesystem;
   fs::create_directories(folder);
   const fs::path dir(folder);
-  writeTumTrajectory((dir / "KeyFrameTrajectory.txt").string(), keyFrameTrajectory());
-
-  writePoints((dir / "map_points.ply").string());
-  writeLines((dir / "map_lines.ply").string());
-  writeKeyFrameTable((dir / "keyframes.csv").string());
+  // Each file on its own: one that fails does not keep the others off the disk.
+  FileWrites files;
+  files.attempt(
+      [&] { writeTumTrajectory((dir / "KeyFrameTrajectory.txt").string(), keyFrameTrajectory()); });
+  files.attempt([&] { writePoints((dir / "map_points.ply").string()); });
+  files.attempt([&] { writeLines((dir / "map_lines.ply").string()); });
+  files.attempt([&] { writeKeyFrameTable((dir / "keyframes.csv").string()); });
+  files.throwFailures();
 }
 
 void MapStore::writePoints(const std::string& path) const {

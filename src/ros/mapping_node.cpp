@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "ply_slam/dense/map_export.h"
+#include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
@@ -272,14 +273,21 @@ void MappingNode::publishDense(const ros::TimerEvent&) {
 
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
-  try {
-    store_.save(request.path);
-    if (dense_)
+  // Every part is tried; the answer names each file that could not be written.
+  FileWrites files;
+  files.attempt([&] { store_.save(request.path); });
+  if (dense_)
+    files.attempt([&] {
       dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
         writeDenseMaps(request.path, map, octree);
       });
+    });
+  files.attempt([&] {
     writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
                        camera_trajectory_);
+  });
+  try {
+    files.throwFailures();
     response.success = true;
     response.message = std::to_string(store_.keyFrames().size()) + " keyframes, " +
                        std::to_string(store_.points().size()) + " points, " +

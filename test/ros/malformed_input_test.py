@@ -128,7 +128,23 @@ class MalformedInput(unittest.TestCase):
         for kind in ("encoding", "size", "empty", "camera_info"):
             self.assertGreater(stats.get(kind), 0, "no '%s' fault reported" % kind)
         self.assertEqual(stats.get("tracked"), offline_frames)
+        self.check_save_map_names_what_it_cannot_write(work)
         self.assertLessEqual(ate["rmse"], rospy.get_param("~ate_factor", 1.5) * offline_ate)
+
+
+    def check_save_map_names_what_it_cannot_write(self, work):
+        """The octree linked to /dev/full (a full disk): save_map must answer success: false
+        naming it, and still write the other files (it used to answer success)."""
+        folder = os.path.join(work, "map")
+        os.makedirs(folder)
+        if not os.path.exists("/dev/full"):
+            return
+        os.symlink("/dev/full", os.path.join(folder, "semantic_octree.ot"))
+        success, message = support.save_map(folder)
+        self.assertFalse(success, message)
+        self.assertIn("semantic_octree.ot", message)
+        for name in ("map_points.ply", "keyframes.csv", "octree.bt", "CameraTrajectory.txt"):
+            self.assertTrue(os.path.isfile(os.path.join(folder, name)), name)
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ from std_msgs.msg import String
 PACKAGE_DIR = rospkg.RosPack().get_path("ply_slam")
 STATS_TOPIC = "/ply_slam/tracking_node/stats"
 SAVE_TRAJECTORY = "/ply_slam/mapping_node/save_trajectory"
+SAVE_MAP = "/ply_slam/mapping_node/save_map"
 
 
 def shared_path(relative):
@@ -109,6 +110,14 @@ def save_trajectory(path):
     if not response.success:
         raise AssertionError("save_trajectory failed: " + response.message)
     return response.message
+
+
+def save_map(path):
+    """(success, message) of the mapper's save_map."""
+    SaveToPath = import_service_type()
+    rospy.wait_for_service(SAVE_MAP, timeout=30)
+    response = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(path)
+    return response.success, response.message
 
 
 def wait_for_nodes(timeout=30):

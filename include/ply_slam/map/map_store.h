@@ -26,8 +26,8 @@ class MapStore {
 
   // Writes everything it holds into `folder` (created): KeyFrameTrajectory.txt (TUM),
   // map_points.ply, map_lines.ply (segments as edges) and keyframes.csv (id, frame, stamp,
-  // features, landmarks, instances). Throws std::runtime_error naming a file it cannot write;
-  // each file is whole or not there (AtomicFile).
+  // features, landmarks, instances). Each file is whole or not there (AtomicFile); every file
+  // is tried, then std::runtime_error names each that could not be written.
   void save(const std::string& folder) const;
 
  private:
