@@ -20,7 +20,7 @@ PLY_SLAM_PACKAGES=(
   libcv-bridge-dev libmessage-filters-dev libtf2-dev libtf2-ros-dev tf2-tools python3-sensor-msgs
   python3-geometry-msgs python3-std-msgs python3-nav-msgs python3-opencv python3-numpy python3-yaml
   rviz
-  libpcl-dev liboctomap-dev
+  libpcl-dev liboctomap-dev nlohmann-json3-dev
 )
 
 ply_slam_install_packages() {

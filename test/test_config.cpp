@@ -271,7 +271,7 @@ TEST_F(ConfigFileTest, DepthNoiseQuarticTerm) {
   EXPECT_NEAR(c.camera.depth_noise.variance(3.0), 6.25e-6 * 9, 1e-15);
   expectConfigError(writeEdited("negative_delta.yaml", "    gamma: 1.0e-6\n",
                                 "    gamma: 1.0e-6\n    delta: -1.0e-5\n"),
-                    {"camera.depth_noise.delta", ">= 0"});
+                    {"camera.depth_noise.delta", "[0, 1]"});
 }
 
 TEST_F(ConfigFileTest, MaxDepthNotAboveMinDepth) {
@@ -279,6 +279,53 @@ TEST_F(ConfigFileTest, MaxDepthNotAboveMinDepth) {
                     {"camera.max_depth", "min_depth"});
   expectConfigError(writeEdited("below.yaml", "max_depth: 6.0", "max_depth: 0.2"),
                     {"camera.max_depth"});
+}
+
+// A NaN, an infinity or an absurd number must not pass: fx 1e-300 and a NaN distortion sent
+// dense points to infinity (a crash), fy .inf and a NaN noise model ran silently wrong.
+TEST_F(ConfigFileTest, NotFiniteOrAbsurdNumbersNameTheKey) {
+  expectConfigError(writeEdited("tiny_fx.yaml", "fx: 517.3", "fx: 1e-300"), {"camera.fx"});
+  expectConfigError(writeEdited("inf_fy.yaml", "fy: 516.5", "fy: .inf"), {"camera.fy", "finite"});
+  expectConfigError(writeEdited("huge_cx.yaml", "cx: 318.6", "cx: 1e9"), {"camera.cx"});
+  expectConfigError(writeEdited("nan_distortion.yaml", "[0.2624, -0.9531,", "[.nan, -0.9531,"),
+                    {"camera.distortion", "finite"});
+  expectConfigError(writeEdited("nan_readout.yaml", "  depth_factor:",
+                                "  rolling_shutter_readout: .nan\n  depth_factor:"),
+                    {"camera.rolling_shutter_readout", "finite"});
+  expectConfigError(writeEdited("nan_alpha.yaml", "alpha: 6.25e-6", "alpha: .nan"),
+                    {"camera.depth_noise.alpha", "finite"});
+  expectConfigError(writeEdited("nan_factor.yaml", "depth_factor: 5000.0", "depth_factor: .nan"),
+                    {"camera.depth_factor"});
+  expectConfigError(writeEdited("nan_ratio.yaml", "nn_ratio: 0.9", "nn_ratio: .nan"),
+                    {"tracking.nn_ratio", "finite"});
+  expectConfigError(writeEdited("inf_depth.yaml", "max_point_depth: 6.0", "max_point_depth: .inf"),
+                    {"tracking.max_point_depth", "finite"});
+  const std::string base = kValidYaml;
+  expectConfigError(write("nan_voxel.yaml", base + "dense:\n  voxel_size: .nan\n"),
+                    {"dense.voxel_size", "finite"});
+  expectConfigError(write("nan_drift.yaml", base + "loop_correction:\n  max_drift_floor_m: .nan\n"),
+                    {"loop_correction.max_drift_floor_m"});
+  // Finite but absurd: both crashed ply_slam_tum (a sweep of every key at +-1e9 / 1e+-300).
+  expectConfigError(write("stride.yaml", base + "dense:\n  stride: 1000000000\n"),
+                    {"dense.stride"});
+  expectConfigError(write("resolution.yaml", base + "dense:\n  octree_resolution: 1e-300\n"),
+                    {"dense.octree_resolution"});
+}
+
+// yaml-cpp keeps both copies of a repeated key and finds the first: the second would be
+// ignored without a word.
+TEST_F(ConfigFileTest, ARepeatedKeyIsAnErrorNamingIt) {
+  expectConfigError(writeEdited("twice.yaml", "  fy: 516.5\n", "  fy: 516.5\n  fx: 600\n"),
+                    {"camera.fx", "twice"});
+  const std::string base = kValidYaml;
+  expectConfigError(write("section_twice.yaml", base + "orb:\n  num_features: 500\n"),
+                    {"orb", "twice"});
+  EXPECT_THROW(loadConfigFromString(base + "dense:\n  stride: 2\n  stride: 4\n", "text"),
+               ConfigError);
+}
+
+TEST_F(ConfigFileTest, ADirectoryIsAnErrorNamingIt) {
+  expectConfigError(dir_.string(), {"directory"});
 }
 
 TEST_F(ConfigFileTest, DistortionNeedsFourOrFiveCoefficients) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <random>
 #include <set>
@@ -205,6 +206,37 @@ TEST(VoxelFilter, FiltersCloudsTooLargeForOneVoxelGrid) {
         }
   const DenseCloudPtr out = voxelFilter(cloud, 0.01);
   EXPECT_EQ(out->size(), 8u);  // one point per corner, from three
+}
+
+// A point at NaN or infinity (a camera with a NaN distortion, fx 1e-300) has no voxel: it is
+// left out, not split for ever (that overflowed the stack).
+TEST(VoxelFilter, LeavesOutPointsThatAreNotFinite) {
+  DenseCloud cloud;
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const float bad : {inf, -inf, nan}) {
+    pcl::PointXYZRGBL p;
+    p.x = 0.5f, p.y = bad, p.z = 1.f;
+    cloud.push_back(p);
+  }
+  pcl::PointXYZRGBL good;
+  good.x = 0.01f, good.y = 0.02f, good.z = 0.03f;
+  cloud.push_back(good);
+  cloud.push_back(good);
+  const DenseCloudPtr out = voxelFilter(cloud, 0.05);
+  ASSERT_EQ(out->size(), 1u);
+  EXPECT_FLOAT_EQ(out->points[0].x, 0.01f);
+}
+
+// Points so far apart that float rounding cannot split them are kept as they are.
+TEST(VoxelFilter, KeepsHugeButFiniteCloudsWithoutRecursingForEver) {
+  DenseCloud cloud;
+  for (const float x : {-3e38f, 3e38f}) {
+    pcl::PointXYZRGBL p;
+    p.x = x, p.y = 0.f, p.z = 1.f;
+    cloud.push_back(p);
+  }
+  EXPECT_EQ(voxelFilter(cloud, 1e-30)->size(), 2u);
 }
 
 TEST(DenseMap, PlacesKeyFramesAndRePlacesThoseWhosePoseChanged) {

@@ -216,6 +216,29 @@ TEST(SemanticOctree, ClassColoursRoundTripThroughTheOtFile) {
   fs::remove_all(dir);
 }
 
+// A file that cannot be written (here a folder in its place; a full disk alike) is named,
+// and the other maps are still written.
+TEST(SemanticOctree, AMapFileThatCannotBeWrittenIsNamedAndTheOthersWritten) {
+  Scene scene;
+  scene.see(*wallPacket(1, {0, 0, 0}, true, false));
+  const fs::path dir =
+      fs::temp_directory_path() / ("ply_slam_octree_fail_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "dense_map.ply");
+  DenseMap map(0.01);
+  map.insert(scene.builder.build(*wallPacket(1, {0, 0, 0}, true, false)));
+  try {
+    writeDenseMaps(dir.string(), map, scene.octree);
+    ADD_FAILURE() << "a directory in place of dense_map.ply went unnoticed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "dense_map.ply").string()), std::string::npos)
+        << e.what();
+  }
+  for (const char* name : {"dense_map.pcd", "semantic_octree.ot", "octree.bt", "map_legend.txt"})
+    EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
+  fs::remove_all(dir);
+}
+
 TEST(DenseMappingWorker, DrainsTheQueueAndSkipsBadPackets) {
   DenseParams params = testParams();
   params.stride = 2;

@@ -19,6 +19,7 @@
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "shared_data.h"
+#include "temp_dir.h"
 
 namespace ply_slam {
 namespace {
@@ -56,24 +57,6 @@ Trajectory transformed(const Eigen::Isometry3d& T, Trajectory trajectory) {
 double maxAbsDifference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
 }
-
-// A fresh directory per test process, removed at the end of the test.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "ply_slam_test_eval_XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 void writeText(const std::string& path, const std::string& text) {
   std::ofstream out(path);
@@ -392,7 +375,8 @@ TEST(TumTrajectoryFile, MalformedLineThrowsWithLineNumber) {
                {"word.txt", "2.0 0 0 abc 0 0 0 1", "'abc'"},
                {"nan.txt", "2.0 0 0 0 nan 0 0 1", "'nan'"},
                {"suffix.txt", "2.0 0 0 0.5m 0 0 0 1", "'0.5m'"},
-               {"zeroq.txt", "2.0 0 0 0 0 0 0 0", "zero norm"}};
+               {"zeroq.txt", "2.0 0 0 0 0 0 0 0", "zero norm"},
+               {"huge.txt", "2.0 1e308 0 0 0 0 0 1", "'1e308'"}};
   for (const auto& c : cases) {
     const std::string path = dir.file(c.name);
     writeText(path, header + c.bad_line + "\n3.0 0 0 0 0 0 0 1\n");
@@ -405,6 +389,16 @@ TEST(TumTrajectoryFile, MalformedLineThrowsWithLineNumber) {
   EXPECT_NE(readErrorMessage(missing).find(missing), std::string::npos);
   EXPECT_THROW(writeTumTrajectory(dir.file("no_such_dir/t.txt"), makeTrajectory(2)),
                std::runtime_error);
+}
+
+// A stamp given twice is paired twice (with two ground-truth poses): ply_slam_eval refuses it.
+TEST(TrajectoryAssociation, FindsTheFirstRepeatedStamp) {
+  Trajectory t = makeTrajectory(5);
+  EXPECT_FALSE(findRepeatedStamp(t));
+  t[3].stamp = t[1].stamp;
+  const auto repeated = findRepeatedStamp(t);
+  ASSERT_TRUE(repeated);
+  EXPECT_EQ(*repeated, std::make_pair(size_t{1}, size_t{3}));
 }
 
 // ---------------------------------------------------------------- plot

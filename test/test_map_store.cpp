@@ -92,6 +92,26 @@ TEST(MapStore, SavesEverythingItHolds) {
   EXPECT_THROW(store.save("/proc/ply_slam_cannot_write_here"), std::exception);
 }
 
+// save_map's answer: a file that cannot be written is named, the others are still written.
+TEST(MapStore, NamesAFileItCannotWriteAndWritesTheOthers) {
+  MapStore store;
+  store.insert(packet(0, 1.0, 0.0));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("ply_slam_map_store_fail_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "map_points.ply");
+  try {
+    store.save(dir.string());
+    ADD_FAILURE() << "a folder in place of map_points.ply went unnoticed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "map_points.ply").string()), std::string::npos)
+        << e.what();
+  }
+  for (const char* name : {"KeyFrameTrajectory.txt", "map_lines.ply", "keyframes.csv"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / name)) << name;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(ConfigFromString, SameChecksAsFiles) {
   const std::string path = std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml";
   const SystemConfig from_file = loadConfig(path);

@@ -20,6 +20,14 @@ TEST(NumberText, WholeNumbersWithinTheirRange) {
   EXPECT_FALSE(parseWholeNumber("99999999999999999999999", LONG_MIN, LONG_MAX));
 }
 
+TEST(NumberText, ImageSizesWidthByHeight) {
+  EXPECT_EQ(parseImageSize("640x480"), std::make_pair(640, 480));
+  EXPECT_EQ(parseImageSize("480x640"), std::make_pair(480, 640));
+  for (const char* bad : {"640", "640x", "x480", "640x480x3", "640X480", "0x480", "640x-1",
+                          "640x480junk", " 640x480", "1e3x480"})
+    EXPECT_FALSE(parseImageSize(bad)) << bad;
+}
+
 TEST(NumberText, FiniteRealNumbers) {
   EXPECT_DOUBLE_EQ(*parseRealNumber("0.25"), 0.25);
   EXPECT_DOUBLE_EQ(*parseRealNumber("-1e-3"), -1e-3);

@@ -9,6 +9,7 @@
 
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
+#include "ply_slam/semantic/onnx_input_shape.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
 #include "shared_data.h"
 
@@ -84,15 +85,54 @@ TEST(YoloV8Seg, WrongInputSizeIsExplained) {
   params.model_path = model_path;
   params.class_names_path = test::sharedPath("models/coco.names");
   params.input_width = params.input_height = 640;  // the export is 320 x 320
-  YoloV8Seg yolo(params);
-  RgbdImages images;
-  images.rgb = cv::Mat(480, 640, CV_8UC3, cv::Scalar(90, 120, 150));
   try {
+    YoloV8Seg yolo(params);
+    RgbdImages images;
+    images.rgb = cv::Mat(480, 640, CV_8UC3, cv::Scalar(90, 120, 150));
     yolo.segment(images);
     FAIL() << "a 640 x 640 input into a 320 x 320 export went through";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("input size"), std::string::npos) << e.what();
   }
+}
+
+// The shared model files are named HxW and --input takes WxH: 480x640 into the 640-wide export
+// has the same area and ran with wrong anchors (IoU 0.59 instead of 0.91). The size is read
+// from the model now and a mismatch named at load.
+TEST(YoloV8Seg, TransposedInputSizeIsRefusedAtLoad) {
+  const std::string model_path = test::sharedPath("models/yolov8n-seg-480x640.onnx");
+  PLY_SLAM_REQUIRE_SHARED(model_path);
+  EXPECT_EQ(readOnnxInputShape(model_path), (std::vector<std::int64_t>{1, 3, 480, 640}));
+  EXPECT_EQ(readOnnxInputShape(test::sharedPath("models/yolov8n-seg-320x320.onnx")),
+            (std::vector<std::int64_t>{1, 3, 320, 320}));
+  YoloParams params;
+  params.model_path = model_path;
+  params.class_names_path = test::sharedPath("models/coco.names");
+  params.input_width = 480;
+  params.input_height = 640;
+  try {
+    YoloV8Seg yolo(params);
+    FAIL() << "480x640 (WxH) accepted for the 640-wide export";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(model_path), std::string::npos) << message;
+    EXPECT_NE(message.find("640x480"), std::string::npos) << message;
+  }
+  params.input_width = 640;
+  params.input_height = 480;
+  EXPECT_NO_THROW(YoloV8Seg{params});
+}
+
+TEST(YoloV8Seg, AFileThatIsNoOnnxModelIsNamed) {
+  const std::string path = std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml";
+  std::vector<std::int64_t> shape;
+  try {
+    shape = readOnnxInputShape(path);
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(shape.empty());  // no shape read from what is no model
+  EXPECT_THROW(readOnnxInputShape("/nonexistent/model.onnx"), std::runtime_error);
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
+#include "ply_slam/common/camera_check.h"
 #include "ply_slam/common/config_section.h"
 #include "ply_slam/dense/occupancy_grid_options_yaml.h"
 #include "ply_slam/loop/loop_options_yaml.h"
@@ -33,20 +35,15 @@ void readCamera(Section s, PinholeCamera& c) {
   s.readPositive("depth_factor", c.depth_factor);
   s.readPositive("min_depth", c.min_depth);
   s.readPositive("max_depth", c.max_depth);
-  if (c.max_depth <= c.min_depth) s.fail("max_depth", "must be > min_depth");
   s.read("rolling_shutter_readout", c.rolling_shutter_readout);
-  if (std::abs(c.rolling_shutter_readout) > 0.1)
-    s.fail("rolling_shutter_readout", "must be within [-0.1, 0.1] s");
   Section n = s.child("depth_noise");
   n.read("alpha", c.depth_noise.alpha);
   n.read("beta", c.depth_noise.beta);
   n.read("gamma", c.depth_noise.gamma);
   n.read("delta", c.depth_noise.delta);
-  if (!(c.depth_noise.delta >= 0.0)) n.fail("delta", "must be >= 0");
   n.rejectUnknownKeys();
-  if (c.depth_noise.variance(c.min_depth) <= 0 || c.depth_noise.variance(c.max_depth) <= 0)
-    n.fail("alpha",
-           "with beta and gamma must give a positive variance over [min_depth, max_depth]");
+  // The same checks as for intrinsics from a camera_info or a keyframe message.
+  if (const auto problem = findCameraProblem(c)) s.fail(problem->key, problem->what);
   s.rejectUnknownKeys();
 }
 
@@ -185,14 +182,15 @@ void readDynamic(Section s, DynamicParams& d) {
 
 void readDense(Section s, DenseParams& d) {
   s.read("enabled", d.enabled);
-  s.readPositive("stride", d.stride);
+  // Beyond these the loops over pixels overflow and OctoMap's keys cannot cover a room.
+  s.readInRange("stride", d.stride, 1, 1000);
   s.readPositive("min_depth", d.min_depth);
   s.readPositive("max_depth", d.max_depth);
   if (d.max_depth <= d.min_depth) s.fail("max_depth", "must be > min_depth");
-  s.readPositive("voxel_size", d.voxel_size);
+  s.readInRange("voxel_size", d.voxel_size, 1e-4, 10.0);
   s.read("dilation_px", d.dilation_px);
   if (d.dilation_px < 0 || d.dilation_px > 50) s.fail("dilation_px", "must be within [0, 50]");
-  s.readPositive("octree_resolution", d.octree_resolution);
+  s.readInRange("octree_resolution", d.octree_resolution, 1e-3, 10.0);
   s.read("octree_occupancy", d.octree_occupancy);
   if (!(d.octree_occupancy >= 0.5 && d.octree_occupancy < 0.97))
     s.fail("octree_occupancy", "must be within [0.5, 0.97)");
@@ -207,9 +205,26 @@ void readDense(Section s, DenseParams& d) {
   s.rejectUnknownKeys();
 }
 
+// yaml-cpp keeps every copy of a repeated key and lookups find the first: a second value
+// further down the file would be ignored without a word.
+void rejectDuplicateKeys(const YAML::Node& node, const std::string& path,
+                         const std::string& prefix) {
+  if (node.IsSequence())
+    for (const auto& item : node) rejectDuplicateKeys(item, path, prefix);
+  if (!node.IsMap()) return;
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    if (!seen.insert(key).second)
+      throw ConfigError("config " + path + ": " + prefix + key + " is given twice");
+    rejectDuplicateKeys(kv.second, path, prefix + key + ".");
+  }
+}
+
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
+  rejectDuplicateKeys(root, path, "");
 
   SystemConfig config;
   config.source_path = path;
@@ -234,6 +249,8 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
 }  // namespace
 
 SystemConfig loadConfig(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw ConfigError("config " + path + ": is a directory, not a YAML file");
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -241,6 +258,8 @@ SystemConfig loadConfig(const std::string& path) {
     throw ConfigError("config " + path + ": cannot open the file");
   } catch (const YAML::Exception& e) {
     throw ConfigError("config " + path + ": not valid YAML: " + e.what());
+  } catch (const std::exception& e) {  // a read error of the stream (libstdc++'s words)
+    throw ConfigError("config " + path + ": cannot read the file: " + e.what());
   }
   return parseConfig(root, path);
 }

@@ -32,4 +32,13 @@ std::optional<double> parseRealNumber(const std::string& text) {
   return value;
 }
 
+std::optional<std::pair<int, int>> parseImageSize(const std::string& text) {
+  const size_t x = text.find('x');
+  if (x == std::string::npos) return std::nullopt;
+  const auto width = parseWholeNumber(text.substr(0, x), 1, 100000);
+  const auto height = parseWholeNumber(text.substr(x + 1), 1, 100000);
+  if (!width || !height) return std::nullopt;
+  return std::make_pair(static_cast<int>(*width), static_cast<int>(*height));
+}
+
 }  // namespace ply_slam

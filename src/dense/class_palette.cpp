@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ply_slam/io/atomic_file.h"
+
 namespace ply_slam {
 namespace {
 
@@ -119,8 +121,8 @@ std::uint32_t ClassPalette::label(const std::string& class_name) const {
 
 void ClassPalette::writeLegend(const std::string& path,
                                const std::vector<std::uint32_t>& labels) const {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write the map legend " + path);
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out << "# ply_slam map legend: label r g b class name\n"
          "# label = the 'label' field of dense_map.pcd/.ply; r g b = the colour of the class in\n"
          "# semantic_octree.ot and map_top.png\n";
@@ -131,6 +133,7 @@ void ClassPalette::writeLegend(const std::string& path,
     const ClassColour c = colour(l);
     out << l << ' ' << int(c.r) << ' ' << int(c.g) << ' ' << int(c.b) << ' ' << name(l) << '\n';
   }
+  file.commit();
 }
 
 }  // namespace ply_slam

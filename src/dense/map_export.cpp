@@ -6,8 +6,12 @@
 #include <pcl/point_types.h>
 
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <stdexcept>
+
+#include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/file_writes.h"
 
 namespace ply_slam {
 
@@ -16,37 +20,43 @@ std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& den
   namespace fs = std::filesystem;
   fs::create_directories(folder);
   const fs::path dir(folder);
+  FileWrites files;
   std::vector<std::string> written;
+  const auto attempt = [&](const std::string& path, const std::function<void()>& write) {
+    if (files.attempt(write)) written.push_back(path);
+  };
 
   const DenseCloudPtr cloud = dense.globalCloud();
-  const std::string pcd = (dir / "dense_map.pcd").string();
-  const std::string ply = (dir / "dense_map.ply").string();
   // PCL refuses to write an empty cloud; an empty map is still a valid (empty) result.
   DenseCloud to_write = *cloud;
   to_write.width = static_cast<std::uint32_t>(to_write.size());
   to_write.height = 1;
   if (!to_write.empty()) {
-    if (pcl::io::savePCDFileBinary(pcd, to_write) != 0)
-      throw std::runtime_error("cannot write " + pcd);
-    if (pcl::io::savePLYFileBinary(ply, to_write) != 0)
-      throw std::runtime_error("cannot write " + ply);
-    written.push_back(pcd);
-    written.push_back(ply);
+    const std::string pcd = (dir / "dense_map.pcd").string();
+    attempt(pcd, [&] {
+      writeFileAtomically(pcd, [&](const std::string& temp) {
+        return pcl::io::savePCDFileBinary(temp, to_write) == 0;
+      });
+    });
+    const std::string ply = (dir / "dense_map.ply").string();
+    attempt(ply, [&] {
+      writeFileAtomically(ply, [&](const std::string& temp) {
+        return pcl::io::savePLYFileBinary(temp, to_write) == 0;
+      });
+    });
   }
 
   const std::string ot = (dir / "semantic_octree.ot").string();
+  attempt(ot, [&] { octree.writeColourTree(ot); });
   const std::string bt = (dir / "octree.bt").string();
-  octree.writeColourTree(ot);
-  octree.writeBinaryTree(bt);
-  written.push_back(ot);
-  written.push_back(bt);
+  attempt(bt, [&] { octree.writeBinaryTree(bt); });
 
   std::set<std::uint32_t> labels{ClassPalette::kUnknown};
   for (const auto& p : cloud->points) labels.insert(p.label);
   for (const auto& v : octree.occupiedVoxels()) labels.insert(v.label);
   const std::string legend = (dir / "map_legend.txt").string();
-  octree.palette().writeLegend(legend, {labels.begin(), labels.end()});
-  written.push_back(legend);
+  attempt(legend, [&] { octree.palette().writeLegend(legend, {labels.begin(), labels.end()}); });
+  files.throwFailures();
   return written;
 }
 

@@ -9,6 +9,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "ply_slam/io/atomic_file.h"
+
 namespace ply_slam {
 
 // What the points that ended in one voxel said about it.
@@ -190,7 +192,10 @@ const octomap::ColorOcTree& SemanticOctree::tree() const {
 
 void SemanticOctree::writeColourTree(const std::string& path) const {
   refresh();
-  if (!impl_->tree.write(path)) throw std::runtime_error("cannot write the octree " + path);
+  // Through a stream whose state is checked: OctoMap's file writers do not check the close.
+  AtomicFile file(path, std::ios::binary);
+  impl_->tree.write(file.stream());
+  file.commit();
 }
 
 void SemanticOctree::writeBinaryTree(const std::string& path) const {
@@ -201,7 +206,9 @@ void SemanticOctree::writeBinaryTree(const std::string& path) const {
     binary.setNodeValue(it.getKey(), it->getLogOdds(), true);
   binary.updateInnerOccupancy();
   binary.prune();
-  if (!binary.writeBinary(path)) throw std::runtime_error("cannot write the octree " + path);
+  AtomicFile file(path, std::ios::binary);
+  binary.writeBinary(file.stream());
+  file.commit();
 }
 
 }  // namespace ply_slam

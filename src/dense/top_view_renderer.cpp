@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "ply_slam/dense/map_drawing.h"
+#include "ply_slam/io/image_file.h"
 
 namespace ply_slam {
 namespace {
@@ -140,8 +141,7 @@ void TopViewRenderer::write(const std::string& png_path,
                             const std::vector<SemanticOctree::Voxel>& voxels,
                             const Trajectory& trajectory, const Eigen::Vector3d& up,
                             const ClassPalette& palette, const std::string& title) const {
-  if (!cv::imwrite(png_path, render(voxels, trajectory, up, palette, title)))
-    throw std::runtime_error("cannot write " + png_path);
+  writeImageFile(png_path, render(voxels, trajectory, up, palette, title));
 }
 
 }  // namespace ply_slam

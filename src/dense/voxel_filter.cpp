@@ -6,6 +6,7 @@
 #include <pcl/point_types.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -32,6 +33,10 @@ void filterInto(const DenseCloud& cloud, float leaf, DenseCloud& out) {
     DenseCloud low, high;
     for (const auto& p : cloud.points)
       (std::floor(p.getArray3fMap()[axis] / leaf) < split ? low : high).push_back(p);
+    if (low.empty() || high.empty()) {  // float rounding at huge coordinates: cannot split
+      out += cloud;
+      return;
+    }
     filterInto(low, leaf, out);
     filterInto(high, leaf, out);
     return;
@@ -52,7 +57,16 @@ void filterInto(const DenseCloud& cloud, float leaf, DenseCloud& out) {
 DenseCloudPtr voxelFilter(const DenseCloud& cloud, double leaf) {
   if (!(leaf > 0.0)) throw std::invalid_argument("voxelFilter: leaf size must be > 0");
   auto out = std::make_shared<DenseCloud>();
-  filterInto(cloud, static_cast<float>(leaf), *out);
+  // A NaN or infinite point has no voxel (and would make the split above recurse for ever).
+  const auto finite = [](const pcl::PointXYZRGBL& p) { return p.getArray3fMap().allFinite(); };
+  if (std::all_of(cloud.begin(), cloud.end(), finite)) {
+    filterInto(cloud, static_cast<float>(leaf), *out);
+    return out;
+  }
+  DenseCloud finite_points;
+  for (const auto& p : cloud.points)
+    if (finite(p)) finite_points.push_back(p);
+  filterInto(finite_points, static_cast<float>(leaf), *out);
   return out;
 }
 

@@ -5,6 +5,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "ply_slam/io/image_file.h"
+
 namespace ply_slam {
 namespace {
 
@@ -64,7 +66,7 @@ void writePrPlot(const std::string& png_path,
     cv::line(image, at + cv::Point(0, -4), at + cv::Point(25, -4), colour, 2);
     cv::putText(image, legend, at + cv::Point(32, 0), kFont, 0.45, {0, 0, 0});
   }
-  if (!cv::imwrite(png_path, image)) throw std::runtime_error(png_path + ": cannot write the plot");
+  writeImageFile(png_path, image);
 }
 
 }  // namespace ply_slam

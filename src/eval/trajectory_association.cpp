@@ -54,4 +54,18 @@ std::vector<std::pair<size_t, size_t>> associateByStamp(const Trajectory& a, con
   return pairs;
 }
 
+std::optional<std::pair<size_t, size_t>> findRepeatedStamp(const Trajectory& trajectory) {
+  std::vector<size_t> by_stamp(trajectory.size());
+  std::iota(by_stamp.begin(), by_stamp.end(), size_t{0});
+  std::stable_sort(by_stamp.begin(), by_stamp.end(),
+                   [&](size_t l, size_t r) { return trajectory[l].stamp < trajectory[r].stamp; });
+  std::optional<std::pair<size_t, size_t>> first;
+  for (size_t k = 1; k < by_stamp.size(); ++k) {
+    const size_t a = by_stamp[k - 1], b = by_stamp[k];
+    if (trajectory[a].stamp == trajectory[b].stamp && (!first || b < first->second))
+      first = std::make_pair(a, b);
+  }
+  return first;
+}
+
 }  // namespace ply_slam

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "ply_slam/io/image_file.h"
+
 namespace ply_slam {
 namespace {
 
@@ -204,15 +206,7 @@ void writeTrajectoryPlot(const std::string& png_path, const Trajectory& gt,
   drawPanel(image, side, "side view (x-z)", gt, est_aligned);
   drawTitle(image, title, drawLegend(image) - 20);
 
-  bool written = false;
-  try {
-    written = cv::imwrite(png_path, image);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error("cannot write trajectory plot '" + png_path + "': " + e.what());
-  }
-  if (!written) {
-    throw std::runtime_error("cannot write trajectory plot '" + png_path + "'");
-  }
+  writeImageFile(png_path, image);
 }
 
 }  // namespace ply_slam

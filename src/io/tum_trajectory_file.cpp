@@ -9,10 +9,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "ply_slam/io/atomic_file.h"
+
 namespace ply_slam {
 namespace {
 
 constexpr size_t kFieldsPerLine = 8;  // stamp tx ty tz qx qy qz qw
+// No trajectory reaches a million kilometres; coordinates near the largest double overflow
+// every sum of squares the metrics take.
+constexpr double kMaxCoordinate = 1e9;  // m
 
 std::runtime_error lineError(const std::string& path, size_t line_number, const std::string& what,
                              const std::string& line) {
@@ -75,6 +80,12 @@ Trajectory readTumTrajectory(const std::string& path) {
             "field " + std::to_string(k + 1) + " '" + fields[k] + "' is not a finite number", line);
       }
     }
+    for (size_t k = 1; k <= 3; ++k)
+      if (std::abs(v[k]) > kMaxCoordinate)
+        throw lineError(path, line_number,
+                        "field " + std::to_string(k + 1) + " '" + fields[k] +
+                            "' is beyond +-1e9 m, not a position",
+                        line);
     // Eigen's constructor order is (w, x, y, z); the file stores qx qy qz qw.
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     if (q.norm() < 1e-6) {
@@ -93,10 +104,8 @@ Trajectory readTumTrajectory(const std::string& path) {
 }
 
 void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
-  std::ofstream out(path);
-  if (!out) {
-    throw std::runtime_error("cannot open trajectory file '" + path + "' for writing");
-  }
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out << "# timestamp tx ty tz qx qy qz qw\n";
   for (const StampedPose& pose : trajectory) {
     Eigen::Quaterniond q(pose.T_wc.linear());
@@ -108,10 +117,7 @@ void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
         << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' '
         << q.w() << '\n';
   }
-  out.close();
-  if (!out) {
-    throw std::runtime_error("error while writing trajectory file '" + path + "'");
-  }
+  file.commit();
 }
 
 }  // namespace ply_slam

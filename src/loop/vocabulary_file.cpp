@@ -9,6 +9,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "ply_slam/io/atomic_file.h"
 #include "ply_slam/loop/fnv1a.h"
 
 namespace ply_slam {
@@ -124,24 +125,10 @@ VocabularyData decode(const std::string& path, const Header& h, const uint8_t* p
 
 void VocabularyFile::write(const std::string& path, const VocabularyData& data) {
   const std::vector<uint8_t> bytes = encode(data);
-  const std::string temp = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) fail(temp, "cannot be created");
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::remove(temp.c_str());
-      fail(temp, "write failed");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temp, path, error);
-  if (error) {
-    std::remove(temp.c_str());
-    fail(path, "cannot replace it: " + error.message());
-  }
+  AtomicFile file(path, std::ios::binary);
+  file.stream().write(reinterpret_cast<const char*>(bytes.data()),
+                      static_cast<std::streamsize>(bytes.size()));
+  file.commit();
 }
 
 VocabularyData VocabularyFile::read(const std::string& path, DescriptorKind expected_kind) {

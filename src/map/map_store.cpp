@@ -6,19 +6,14 @@
 #include <set>
 #include <stdexcept>
 
+#include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
 namespace ply_slam {
 namespace {
 
-std::ofstream openForWriting(const std::filesystem::path& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-  out << std::setprecision(9);
-  return out;
-}
-
-void writeVertex(std::ofstream& out, const Eigen::Vector3d& p) {
+void writeVertex(std::ostream& out, const Eigen::Vector3d& p) {
   out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
 }
 
@@ -81,15 +76,29 @@ void MapStore::save(const std::string& folder) const {
   namespace fs = std::filesystem;
   fs::create_directories(folder);
   const fs::path dir(folder);
-  writeTumTrajectory((dir / "KeyFrameTrajectory.txt").string(), keyFrameTrajectory());
+  // Each file on its own: one that fails does not keep the others off the disk.
+  FileWrites files;
+  files.attempt(
+      [&] { writeTumTrajectory((dir / "KeyFrameTrajectory.txt").string(), keyFrameTrajectory()); });
+  files.attempt([&] { writePoints((dir / "map_points.ply").string()); });
+  files.attempt([&] { writeLines((dir / "map_lines.ply").string()); });
+  files.attempt([&] { writeKeyFrameTable((dir / "keyframes.csv").string()); });
+  files.throwFailures();
+}
 
-  auto points = openForWriting(dir / "map_points.ply");
-  points << "ply\nformat ascii 1.0\nelement vertex " << points_.size()
+void MapStore::writePoints(const std::string& path) const {
+  AtomicFile file(path);
+  std::ostream& points = file.stream();
+  points << std::setprecision(9) << "ply\nformat ascii 1.0\nelement vertex " << points_.size()
          << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
   for (const auto& [id, p] : points_) writeVertex(points, p.position);
+  file.commit();
+}
 
-  auto lines = openForWriting(dir / "map_lines.ply");
-  lines << "ply\nformat ascii 1.0\nelement vertex " << 2 * lines_.size()
+void MapStore::writeLines(const std::string& path) const {
+  AtomicFile file(path);
+  std::ostream& lines = file.stream();
+  lines << std::setprecision(9) << "ply\nformat ascii 1.0\nelement vertex " << 2 * lines_.size()
         << "\nproperty float x\nproperty float y\nproperty float z\nelement edge " << lines_.size()
         << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
   for (const auto& [id, l] : lines_) {
@@ -97,8 +106,12 @@ void MapStore::save(const std::string& folder) const {
     writeVertex(lines, l.end);
   }
   for (size_t i = 0; i < lines_.size(); ++i) lines << 2 * i << ' ' << 2 * i + 1 << '\n';
+  file.commit();
+}
 
-  auto keyframes = openForWriting(dir / "keyframes.csv");
+void MapStore::writeKeyFrameTable(const std::string& path) const {
+  AtomicFile file(path);
+  std::ostream& keyframes = file.stream();
   keyframes << "id,frame,stamp,keypoints,points,lines,instances\n";
   for (const auto& [id, kf] : keyframes_) {
     std::string instances;
@@ -109,8 +122,7 @@ void MapStore::save(const std::string& folder) const {
               << ',' << kf.keypoints.size() << ',' << kf.points.size() << ',' << kf.lines.size()
               << ',' << instances << '\n';
   }
-  for (auto* out : {&points, &lines, &keyframes})
-    if (!out->flush()) throw std::runtime_error("cannot write into " + folder);
+  file.commit();
 }
 
 }  // namespace ply_slam

@@ -3,8 +3,11 @@
 #include <cv_bridge/cv_bridge.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "ply_slam/common/camera_check.h"
 
 namespace ply_slam {
 namespace {
@@ -19,7 +22,18 @@ geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p) {
   return m;
 }
 
-Eigen::Vector3d fromPointMsg(const geometry_msgs::Point& m) { return {m.x, m.y, m.z}; }
+// Every number from a message is checked: one NaN in a landmark or a pose would spread
+// through the map.
+Eigen::Vector3d fromPointMsg(const geometry_msgs::Point& m) {
+  const Eigen::Vector3d p(m.x, m.y, m.z);
+  if (!p.allFinite()) throw std::invalid_argument("a point or position is not finite");
+  return p;
+}
+
+void throwOnCameraProblem(const PinholeCamera& camera, const std::string& source) {
+  if (const auto problem = findCameraProblem(camera))
+    throw std::invalid_argument(source + ": " + problem->key + " " + problem->what);
+}
 
 LandmarkMsg toMsg(const LandmarkPoint& p) {
   LandmarkMsg m;
@@ -102,6 +116,7 @@ PinholeCamera fromMsg(const CameraMsg& m) {
   c.depth_noise = {m.depth_noise_alpha, m.depth_noise_beta, m.depth_noise_gamma,
                    m.depth_noise_delta};
   c.rolling_shutter_readout = m.rolling_shutter_readout;
+  throwOnCameraProblem(c, "keyframe camera");
   return c;
 }
 
@@ -146,6 +161,20 @@ Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& m) {
   T.linear() = q.normalized().toRotationMatrix();
   T.translation() = fromPointMsg(m.position);
   return T;
+}
+
+PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera camera) {
+  camera.fx = info.K[0];
+  camera.fy = info.K[4];
+  camera.cx = info.K[2];
+  camera.cy = info.K[5];
+  camera.width = static_cast<int>(info.width);
+  camera.height = static_cast<int>(info.height);
+  cv::Mat d = cv::Mat::zeros(1, 5, CV_64F);
+  for (size_t i = 0; i < std::min<size_t>(5, info.D.size()); ++i) d.at<double>(0, i) = info.D[i];
+  camera.distortion = d;
+  throwOnCameraProblem(camera, "camera_info");
+  return camera;
 }
 
 namespace {
@@ -212,6 +241,7 @@ KeyFramePacket fromMsg(const KeyFrameMsg& m) {
   p.id = m.id;
   p.frame_id = m.frame_id;
   p.stamp = m.stamp;
+  if (!std::isfinite(p.stamp)) throw std::invalid_argument("keyframe stamp is not finite");
   p.T_wc = fromPoseMsg(m.T_wc);
   p.camera = fromMsg(m.camera);
   const size_t n = m.keypoints.size();

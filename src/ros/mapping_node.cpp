@@ -17,6 +17,7 @@
 #include "ply_slam/dense/grid_renderer.h"
 #include "ply_slam/dense/map_export.h"
 #include "ply_slam/dense/occupancy_grid_builder.h"
+#include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
@@ -491,15 +492,21 @@ void MappingNode::publishGrid(const ros::TimerEvent&) {
 
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
-  try {
-    store_.save(request.path);
-    if (dense_)
+  // Every part is tried; the answer names each file that could not be written.
+  FileWrites files;
+  files.attempt([&] { store_.save(request.path); });
+  if (dense_)
+    files.attempt([&] {
       dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
         writeDenseMaps(request.path, map, octree);
       });
+    });
+  files.attempt([&] {
     writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
                        cameraTrajectory());
-    if (grid_pub_) {  // map.pgm + map.yaml in the frame ~grid_map is published in, grid.png
+  });
+  if (grid_pub_)  // map.pgm + map.yaml in the frame ~grid_map is published in, grid.png
+    files.attempt([&] {
       Eigen::Isometry3d T_frame_floor;
       std::string frame;
       const Trajectory trajectory = cameraTrajectory();
@@ -507,7 +514,9 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
       writeGridMap(request.path, grid, T_frame_floor);
       GridRenderer().write((std::filesystem::path(request.path) / "grid.png").string(), grid,
                            trajectory, "occupancy grid (" + frame + ")");
-    }
+    });
+  try {
+    files.throwFailures();
     const std::string partial = partialReason(true);
     response.success = partial.empty();
     response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +

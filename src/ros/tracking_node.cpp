@@ -20,19 +20,9 @@
 namespace ply_slam {
 namespace {
 
-// Intrinsics and size from camera_info replace the config's (plumb_bob / rational_polynomial
-// distortion: the first five coefficients are OpenCV's k1 k2 p1 p2 k3).
-void applyCameraInfo(const sensor_msgs::CameraInfo& info, PinholeCamera& camera) {
-  camera.fx = info.K[0];
-  camera.fy = info.K[4];
-  camera.cx = info.K[2];
-  camera.cy = info.K[5];
-  camera.width = static_cast<int>(info.width);
-  camera.height = static_cast<int>(info.height);
-  cv::Mat d = cv::Mat::zeros(1, 5, CV_64F);
-  for (size_t i = 0; i < std::min<size_t>(5, info.D.size()); ++i) d.at<double>(0, i) = info.D[i];
-  camera.distortion = d;
-}
+// A camera_info whose K is all zero says the camera is not calibrated: the config's
+// intrinsics are used.
+bool calibrated(const sensor_msgs::CameraInfo& info) { return info.K[0] != 0.0; }
 
 }  // namespace
 
@@ -151,7 +141,15 @@ void TrackingNode::flushStalledPair() {
   onImages(newest_rgb_, newest_depth_);
 }
 
+// Checked on arrival: a NaN or absurd number in K or D is logged and the camera_info left
+// out (the last good one, or the config, stays), never handed to the tracker.
 void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
+  if (calibrated(*info)) try {
+      cameraFromInfo(*info, config_.camera);
+    } catch (const std::invalid_argument& e) {
+      bad_input_.report("camera_info", std::string(e.what()) + "; camera_info ignored");
+      return;
+    }
   std::lock_guard<std::mutex> lock(info_mutex_);
   camera_info_ = info;
 }
@@ -215,8 +213,8 @@ void TrackingNode::work() {
 
 void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
   SystemConfig config = config_;
-  if (info && info->K[0] > 0) {
-    applyCameraInfo(*info, config.camera);
+  if (info && calibrated(*info)) {
+    config.camera = cameraFromInfo(*info, config.camera);
     ROS_INFO_STREAM("intrinsics from camera_info: fx "
                     << config.camera.fx << " fy " << config.camera.fy << " cx " << config.camera.cx
                     << " cy " << config.camera.cy << ", " << config.camera.width << "x"

@@ -2,6 +2,7 @@
 // TUM benchmark's definitions (see ply_slam/eval/trajectory_metrics.h).
 //
 // Exit codes: 0 success, 1 unreadable/malformed input or too little overlap, 2 usage error.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "ply_slam/common/number_text.h"
+#include "ply_slam/eval/trajectory_association.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/tum_trajectory_file.h"
@@ -35,6 +37,8 @@ const char* const kUsage =
     "  --max-dt S       largest stamp difference for associating poses (default 0.02 s)\n"
     "  --json           print one JSON object instead of text\n"
     "  --plot PNG       (ate) also write a top/side view of gt and the aligned estimate\n"
+    "A stamp given twice in a file, a non-finite number or coordinates too large to square\n"
+    "are errors naming the file.\n"
     "Exit codes: 0 ok, 1 unreadable/malformed data or too few pairs, 2 usage error.\n";
 
 // Thrown for command-line mistakes; main turns it into exit code 2.
@@ -71,6 +75,9 @@ Options parseArguments(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError{"missing command 'ate' or 'rpe'"};
   Options options;
   options.command = args[0];
+  if (options.command.size() > 1 && options.command[0] == '-')
+    throw UsageError{"unknown option " + options.command +
+                     " (the command, ate or rpe, comes first)"};
   if (options.command != "ate" && options.command != "rpe") {
     throw UsageError{"unknown command '" + options.command + "' (expected 'ate' or 'rpe')"};
   }
@@ -93,7 +100,7 @@ Options parseArguments(const std::vector<std::string>& args) {
     } else if (arg == "--delta-seconds" && is_rpe) {
       options.delta_seconds = parseNumber(arg, value(), false);
     } else if (arg.size() > 1 && arg[0] == '-') {
-      throw UsageError{"unknown option '" + arg + "' for '" + options.command + "'"};
+      throw UsageError{"unknown option " + arg + " for '" + options.command + "'"};
     } else {
       positional.push_back(arg);
     }
@@ -110,14 +117,6 @@ Options parseArguments(const std::vector<std::string>& args) {
   return options;
 }
 
-ply_slam::Trajectory readNonEmpty(const std::string& path, const char* role) {
-  ply_slam::Trajectory trajectory = ply_slam::readTumTrajectory(path);
-  if (trajectory.empty()) {
-    throw std::runtime_error(std::string(role) + " file '" + path + "' holds no poses");
-  }
-  return trajectory;
-}
-
 std::string number(double value) {
   char text[40];
   std::snprintf(text, sizeof(text), "%.10g", value);
@@ -131,10 +130,35 @@ std::string fixed(double value) {
   return text;
 }
 
+// A stamp given twice would be paired twice (with two ground-truth poses) and count twice.
+ply_slam::Trajectory readNonEmpty(const std::string& path, const char* role) {
+  ply_slam::Trajectory trajectory = ply_slam::readTumTrajectory(path);
+  if (trajectory.empty()) {
+    throw std::runtime_error(std::string(role) + " file '" + path + "' holds no poses");
+  }
+  if (const auto repeated = ply_slam::findRepeatedStamp(trajectory)) {
+    throw std::runtime_error(std::string(role) + " file '" + path + "' gives stamp " +
+                             fixed(trajectory[repeated->second].stamp) + " twice (poses " +
+                             std::to_string(repeated->first + 1) + " and " +
+                             std::to_string(repeated->second + 1) + ")");
+  }
+  return trajectory;
+}
+
+// Coordinates near the largest double make the errors overflow to inf or NaN, which are no
+// numbers to report (nor valid JSON).
+void requireFinite(const ply_slam::ErrorStats& s, const char* what) {
+  for (const double v : {s.rmse, s.mean, s.median, s.max})
+    if (!std::isfinite(v))
+      throw std::runtime_error(std::string(what) +
+                               " is not a finite number: the coordinates are too large");
+}
+
 int runAte(const Options& options, const ply_slam::Trajectory& gt,
            const ply_slam::Trajectory& est) {
   const ply_slam::AteResult ate = ply_slam::computeAte(gt, est, options.max_dt);
   const ply_slam::ErrorStats& s = ate.translation;
+  requireFinite(s, "the ATE");
   if (options.json) {
     std::cout << "{\"pairs\": " << s.count << ", \"rmse\": " << number(s.rmse)
               << ", \"mean\": " << number(s.mean) << ", \"median\": " << number(s.median)
@@ -171,6 +195,8 @@ int runRpe(const Options& options, const ply_slam::Trajectory& gt,
           : ply_slam::computeRpeFrames(gt, est, options.delta_frames.value_or(1), options.max_dt);
   const ply_slam::ErrorStats& t = rpe.translation;
   const ply_slam::ErrorStats& r = rpe.rotation;
+  requireFinite(t, "the RPE");
+  requireFinite(r, "the RPE");
   if (options.json) {
     std::cout << "{\"pairs\": " << t.count << ", \"trans_rmse\": " << number(t.rmse)
               << ", \"trans_mean\": " << number(t.mean)
@@ -206,7 +232,8 @@ int runRpe(const Options& options, const ply_slam::Trajectory& gt,
 
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
-  if (!args.empty() && (args[0] == "-h" || args[0] == "--help")) {
+  if (std::count(args.begin(), args.end(), "-h") ||
+      std::count(args.begin(), args.end(), "--help")) {
     std::cout << kUsage;
     return 0;
   }

@@ -47,10 +47,11 @@ struct Options {
   bool json = false;
 };
 
+const char* const kUsage =
+    "usage: ply_slam_lines --sequence DIR --config FILE [--max-frames N] [--offset K] [--json]\n";
+
 [[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_lines: " << error << "\n"
-            << "usage: ply_slam_lines --sequence DIR --config FILE [--max-frames N] [--offset K]"
-               " [--json]\n";
+  std::cerr << "ply_slam_lines: " << error << "\n" << kUsage;
   std::exit(2);
 }
 
@@ -62,25 +63,23 @@ long parsePositive(const std::string& option, const std::string& text) {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--json") {
-      o.json = true;
-      continue;
-    }
-    if (i + 1 >= argc) usage("missing value after " + arg);
-    const std::string value = argv[++i];
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.flags = {"--json"};
+  line.options = {"--sequence", "--config", "--max-frames", "--offset"};
+  line.on_flag = [&](const std::string&) { o.json = true; };
+  line.on_option = [&](const std::string& arg, const std::string& value) {
     if (arg == "--sequence")
       o.sequence = value;
     else if (arg == "--config")
       o.config = value;
     else if (arg == "--max-frames")
       o.max_frames = parsePositive(arg, value);
-    else if (arg == "--offset")
-      o.offset = static_cast<int>(parsePositive(arg, value));
     else
-      usage("unknown option " + arg);
-  }
+      o.offset = static_cast<int>(parsePositive(arg, value));
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
   if (o.sequence.empty() || o.config.empty()) usage("--sequence and --config are required");
   return o;
 }

@@ -24,11 +24,11 @@
 #include "ply_slam/eval/loop_ground_truth.h"
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/eval/pr_plot.h"
+#include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/loop/loop_key_frame_builder.h"
-#include "ply_slam/semantic/mask_folder_segmenter.h"
-#include "ply_slam/semantic/yolo_v8_seg.h"
+#include "ply_slam/semantic/segmenter_choice.h"
 #include "ply_slam/system/system.h"
 
 namespace fs = std::filesystem;
@@ -51,8 +51,8 @@ constexpr const char* kUsage =
     "    scripts/setup.sh trains into build/vocabulary/)\n";
 
 struct Options {
-  std::string sequence, config, out, segmenter = "none", model;
-  int input_width = 0, input_height = 0;
+  std::string sequence, config, out;
+  SegmenterChoice segmentation;
   long max_frames = -1;
   bool keep_long_links = false;
   LoopGroundTruthParams truth;
@@ -64,22 +64,13 @@ struct Options {
 }
 
 void setOption(Options& o, const std::string& arg, const std::string& value) {
+  if (o.segmentation.take(arg, value)) return;
   if (arg == "--sequence") {
     o.sequence = value;
   } else if (arg == "--config") {
     o.config = value;
   } else if (arg == "--out") {
     o.out = value;
-  } else if (arg == "--segmenter") {
-    if (value != "none" && value != "masks" && value != "yolo")
-      usage("unknown segmenter '" + value + "' (none, masks or yolo)");
-    o.segmenter = value;
-  } else if (arg == "--model") {
-    o.model = value;
-  } else if (arg == "--input") {
-    if (std::sscanf(value.c_str(), "%dx%d", &o.input_width, &o.input_height) != 2 ||
-        o.input_width <= 0 || o.input_height <= 0)
-      usage("--input needs WxH, e.g. 320x320, got '" + value + "'");
   } else if (arg == "--max-frames") {
     const auto n = parseWholeNumber(value, 1, 1000000000L);
     if (!n) usage("--max-frames needs a whole number >= 1, got '" + value + "'");
@@ -88,8 +79,6 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     const auto s = parseRealNumber(value);
     if (!s || *s < 0) usage("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
     o.truth.min_gap_s = *s;
-  } else {
-    usage("unknown option " + arg);
   }
 }
 
@@ -105,23 +94,15 @@ Options parse(int argc, char** argv) {
     setOption(o, arg, value);
   };
   line.fail = [](const std::string& error) { usage(error); };
-  line.parse(argc, argv);
+  try {
+    line.parse(argc, argv);
+    o.segmentation.check();
+  } catch (const std::invalid_argument& e) {
+    usage(e.what());
+  }
   if (o.sequence.empty() || o.config.empty() || o.out.empty())
     usage("--sequence, --config and --out are required");
   return o;
-}
-
-std::unique_ptr<Segmenter> makeSegmenter(const Options& o, const SystemConfig& config,
-                                         const TumSequence& sequence) {
-  if (o.segmenter == "masks") return std::make_unique<MaskFolderSegmenter>(sequence.folder());
-  if (o.segmenter != "yolo") return nullptr;
-  YoloParams yolo = config.segmentation;
-  if (!o.model.empty()) yolo.model_path = o.model;
-  if (o.input_width > 0) {
-    yolo.input_width = o.input_width;
-    yolo.input_height = o.input_height;
-  }
-  return std::make_unique<YoloV8Seg>(yolo);
 }
 
 // The camera of a depth image downsampled by `factor` (the ground truth's overlap test).
@@ -337,13 +318,14 @@ double percentile(std::vector<double> v, double q) {
 
 void writeCurves(const fs::path& out, const std::vector<std::pair<std::string, PrCurve>>& curves,
                  const std::string& title) {
-  std::ofstream csv(out / "pr.csv");
+  AtomicFile csv_file((out / "pr.csv").string());
+  std::ostream& csv = csv_file.stream();
   csv << "variant,threshold,detections,true_positives,precision,recall\n" << std::setprecision(6);
   for (const auto& [name, curve] : curves)
     for (const PrPoint& p : curve.points)
       csv << name << ',' << p.threshold << ',' << p.detections << ',' << p.true_positives << ','
           << p.precision << ',' << p.recall << '\n';
-  if (!csv) throw std::runtime_error((out / "pr.csv").string() + ": cannot write");
+  csv_file.commit();
   writePrPlot((out / "pr.png").string(), curves, title);
 }
 
@@ -376,9 +358,10 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     worst_m = std::max(worst_m, a.motion_error_m);
     worst_deg = std::max(worst_deg, a.motion_error_deg);
   }
-  std::ofstream j(out / "summary.json");
+  AtomicFile file((out / "summary.json").string());
+  std::ostream& j = file.stream();
   j << "{\n  \"sequence\": \"" << o.sequence << "\",\n  \"config\": \"" << o.config
-    << "\",\n  \"segmenter\": \"" << o.segmenter << "\",\n  \"frames\": " << info.frames
+    << "\",\n  \"segmenter\": \"" << o.segmentation.kind << "\",\n  \"frames\": " << info.frames
     << ",\n  \"lost_frames\": " << info.lost << ",\n  \"keyframes\": " << info.keyframes
     << ",\n  \"mean_lines_per_keyframe\": " << jsonNumber(info.mean_lines)
     << ",\n  \"mean_instances_per_keyframe\": " << jsonNumber(info.mean_instances)
@@ -429,7 +412,7 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0))
     << ", \"geometric_check_median\": " << jsonNumber(percentile(run.check_ms, 0.5))
     << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0)) << "}\n}\n";
-  if (!j) throw std::runtime_error((out / "summary.json").string() + ": cannot write");
+  file.commit();
 }
 
 LoopDetector makeDetector(const SystemConfig& config, double min_gap_s, RunInfo& info) {
@@ -445,7 +428,8 @@ LoopDetector makeDetector(const SystemConfig& config, double min_gap_s, RunInfo&
 // Tracks every frame; each new keyframe goes to the collector.
 void track(const Options& o, const SystemConfig& config, const TumSequence& sequence,
            KeyFrameCollector& collector, System& system, RunInfo& info) {
-  std::unique_ptr<Segmenter> segmenter = makeSegmenter(o, config, sequence);
+  std::unique_ptr<Segmenter> segmenter =
+      o.segmentation.make(config.segmentation, sequence.folder());
   const size_t n =
       o.max_frames > 0 ? std::min<size_t>(sequence.size(), o.max_frames) : sequence.size();
   for (size_t i = 0; i < n; ++i) {

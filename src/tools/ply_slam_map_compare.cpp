@@ -30,6 +30,7 @@
 #include "ply_slam/dense/voxel_agreement.h"
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/eval/trajectory_metrics.h"
+#include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
@@ -44,36 +45,43 @@ struct Options {
   double clock_offset = 0.0;  // s, added to the keyframe stamps to look up the ground truth
 };
 
+const char* const kUsage =
+    "usage: ply_slam_map_compare --sequence DIR --config FILE --keyframes FILE"
+    " [--clock-offset auto|SECONDS] [--out DIR]\n";
+
 [[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_map_compare: " << error << "\n"
-            << "usage: ply_slam_map_compare --sequence DIR --config FILE --keyframes FILE"
-               " [--clock-offset auto|SECONDS] [--out DIR]\n";
+  std::cerr << "ply_slam_map_compare: " << error << "\n" << kUsage;
   std::exit(2);
+}
+
+void setOption(Options& o, const std::string& arg, const std::string& value) {
+  if (arg == "--sequence")
+    o.sequence = value;
+  else if (arg == "--config")
+    o.config = value;
+  else if (arg == "--keyframes")
+    o.keyframes = value;
+  else if (arg == "--out")
+    o.out = value;
+  else if (arg == "--clock-offset") {
+    o.fit_clock_offset = value == "auto";
+    const std::optional<double> seconds = parseRealNumber(value);
+    if (!o.fit_clock_offset && !seconds)
+      usage("--clock-offset needs auto or seconds, not " + value);
+    if (seconds) o.clock_offset = *seconds;
+  }
 }
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc) usage("missing value after " + arg);
-    const std::string value = argv[++i];
-    if (arg == "--sequence")
-      o.sequence = value;
-    else if (arg == "--config")
-      o.config = value;
-    else if (arg == "--keyframes")
-      o.keyframes = value;
-    else if (arg == "--out")
-      o.out = value;
-    else if (arg == "--clock-offset") {
-      o.fit_clock_offset = value == "auto";
-      const std::optional<double> seconds = parseRealNumber(value);
-      if (!o.fit_clock_offset && !seconds)
-        usage("--clock-offset needs auto or seconds, not " + value);
-      if (seconds) o.clock_offset = *seconds;
-    } else
-      usage("unknown option " + arg);
-  }
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.options = {"--sequence", "--config", "--keyframes", "--out", "--clock-offset"};
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    setOption(o, arg, value);
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
   if (o.sequence.empty() || o.config.empty() || o.keyframes.empty())
     usage("--sequence, --config and --keyframes are required");
   return o;
@@ -239,7 +247,7 @@ int run(const Options& options) {
   std::cout << json.str();
   if (!options.out.empty()) {
     fs::create_directories(options.out);
-    std::ofstream(fs::path(options.out) / "map_compare.json") << json.str();
+    writeTextFileAtomically((fs::path(options.out) / "map_compare.json").string(), json.str());
   }
   return 0;
 }

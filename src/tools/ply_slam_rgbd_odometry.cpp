@@ -21,8 +21,10 @@
 #include <string>
 #include <vector>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/statistics.h"
+#include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
@@ -35,43 +37,37 @@ struct Options {
   std::string timing_json;
 };
 
-void printUsage(std::ostream& os) {
-  os << "usage: ply_slam_rgbd_odometry --sequence DIR --config FILE --out TRAJ.txt"
-        " [--timing-json FILE]\n"
-        "Runs OpenCV rgbd::RgbdOdometry (default parameters) frame to frame on a TUM folder\n"
-        "and writes the chained camera poses as a TUM trajectory.\n";
+const char* const kUsage =
+    "usage: ply_slam_rgbd_odometry --sequence DIR --config FILE --out TRAJ.txt"
+    " [--timing-json FILE]\n"
+    "Runs OpenCV rgbd::RgbdOdometry (default parameters) frame to frame on a TUM folder\n"
+    "and writes the chained camera poses as a TUM trajectory.\n";
+
+[[noreturn]] void usage(const std::string& error) {
+  std::cerr << "ply_slam_rgbd_odometry: " << error << "\n" << kUsage;
+  std::exit(2);
 }
 
-bool parseOptions(int argc, char** argv, Options* options) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") {
-      printUsage(std::cout);
-      std::exit(0);
-    }
-    if (i + 1 >= argc) {
-      std::cerr << "ply_slam_rgbd_odometry: " << arg << " needs a value (or is unknown)\n";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--sequence") {
-      options->sequence = value;
-    } else if (arg == "--config") {
-      options->config = value;
-    } else if (arg == "--out") {
-      options->out = value;
-    } else if (arg == "--timing-json") {
-      options->timing_json = value;
-    } else {
-      std::cerr << "ply_slam_rgbd_odometry: unknown option " << arg << "\n";
-      return false;
-    }
-  }
-  if (options->sequence.empty() || options->config.empty() || options->out.empty()) {
-    std::cerr << "ply_slam_rgbd_odometry: --sequence, --config and --out are required\n";
-    return false;
-  }
-  return true;
+Options parseOptions(int argc, char** argv) {
+  Options options;
+  ply_slam::CommandLine line;
+  line.usage_text = kUsage;
+  line.options = {"--sequence", "--config", "--out", "--timing-json"};
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    if (arg == "--sequence")
+      options.sequence = value;
+    else if (arg == "--config")
+      options.config = value;
+    else if (arg == "--out")
+      options.out = value;
+    else
+      options.timing_json = value;
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
+  if (options.sequence.empty() || options.config.empty() || options.out.empty())
+    usage("--sequence, --config and --out are required");
+  return options;
 }
 
 // The ground-truth pose nearest in time to `stamp`: starts the estimate in the gt frame so
@@ -161,13 +157,13 @@ int run(const Options& options) {
   if (!options.timing_json.empty()) {
     const std::filesystem::path json_path(options.timing_json);
     if (json_path.has_parent_path()) std::filesystem::create_directories(json_path.parent_path());
-    std::ofstream json(options.timing_json);
-    if (!json) throw std::runtime_error(options.timing_json + ": cannot write");
+    ply_slam::AtomicFile file(options.timing_json);
     // Same key names as ply_slam_tum's summary.json so scripts read both alike.
-    json << "{\n  \"method\": \"opencv_rgbd_odometry\",\n  \"frames\": " << trajectory.size()
-         << ",\n  \"failures\": " << failures << ",\n  \"tracking_ms_median\": " << median_ms
-         << ",\n  \"tracking_ms_mean\": " << mean_ms << "\n}\n";
-    if (!json) throw std::runtime_error(options.timing_json + ": write failed");
+    file.stream() << "{\n  \"method\": \"opencv_rgbd_odometry\",\n  \"frames\": "
+                  << trajectory.size() << ",\n  \"failures\": " << failures
+                  << ",\n  \"tracking_ms_median\": " << median_ms
+                  << ",\n  \"tracking_ms_mean\": " << mean_ms << "\n}\n";
+    file.commit();
   }
   return 0;
 }
@@ -175,15 +171,6 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options options;
-  if (!parseOptions(argc, argv, &options)) {
-    printUsage(std::cerr);
-    return 2;
-  }
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_rgbd_odometry: " << e.what() << "\n";
-    return 1;
-  }
+  const Options options = parseOptions(argc, argv);
+  return ply_slam::runReportingErrors("ply_slam_rgbd_odometry", [&] { return run(options); });
 }

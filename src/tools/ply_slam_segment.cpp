@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <tuple>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/io/image_file.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
@@ -22,45 +24,64 @@ using namespace ply_slam;
 
 namespace {
 
+const char* const kUsage =
+    "usage: ply_slam_segment --sequence DIR --model ONNX --input WxH"
+    " [--classes FILE] [--every N] [--save DIR]\n";
+
 [[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_segment: " << error << "\n"
-            << "usage: ply_slam_segment --sequence DIR --model ONNX --input WxH"
-               " [--classes FILE] [--every N] [--save DIR]\n";
+  std::cerr << "ply_slam_segment: " << error << "\n" << kUsage;
   std::exit(2);
+}
+
+struct Options {
+  std::string sequence_dir, save_dir;
+  YoloParams params;
+  int every = 1;
+};
+
+void setOption(Options& o, const std::string& arg, const std::string& value) {
+  if (arg == "--sequence") {
+    o.sequence_dir = value;
+  } else if (arg == "--model") {
+    o.params.model_path = value;
+  } else if (arg == "--classes") {
+    o.params.class_names_path = value;
+  } else if (arg == "--input") {
+    const auto size = parseImageSize(value);
+    if (!size) usage("--input needs WxH, e.g. 640x480, got '" + value + "'");
+    std::tie(o.params.input_width, o.params.input_height) = *size;
+  } else if (arg == "--every") {
+    const std::optional<long> n = parseWholeNumber(value, 1, 100000);
+    if (!n) usage("--every needs a whole number in [1, 100000], got '" + value + "'");
+    o.every = static_cast<int>(*n);
+  } else {
+    o.save_dir = value;
+  }
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.options = {"--sequence", "--model", "--classes", "--input", "--every", "--save"};
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    setOption(o, arg, value);
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
+  if (o.sequence_dir.empty() || o.params.model_path.empty())
+    usage("--sequence and --model are required");
+  return o;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string sequence_dir, save_dir;
-  YoloParams params;
-  int every = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc) usage("missing value after " + arg);
-    const std::string value = argv[++i];
-    if (arg == "--sequence") {
-      sequence_dir = value;
-    } else if (arg == "--model") {
-      params.model_path = value;
-    } else if (arg == "--classes") {
-      params.class_names_path = value;
-    } else if (arg == "--input") {
-      if (std::sscanf(value.c_str(), "%dx%d", &params.input_width, &params.input_height) != 2 ||
-          params.input_width <= 0 || params.input_height <= 0)
-        usage("--input needs WxH, e.g. 640x480");
-    } else if (arg == "--every") {
-      const std::optional<long> n = parseWholeNumber(value, 1, 100000);
-      if (!n) usage("--every needs a whole number in [1, 100000], got '" + value + "'");
-      every = static_cast<int>(*n);
-    } else if (arg == "--save") {
-      save_dir = value;
-    } else {
-      usage("unknown option " + arg);
-    }
-  }
-  if (sequence_dir.empty() || params.model_path.empty())
-    usage("--sequence and --model are required");
+  const Options options = parse(argc, argv);
+  const std::string& sequence_dir = options.sequence_dir;
+  const std::string& save_dir = options.save_dir;
+  const YoloParams& params = options.params;
+  const int every = options.every;
 
   try {
     YoloV8Seg yolo(params);
@@ -99,7 +120,7 @@ int main(int argc, char** argv) {
         cv::addWeighted(images.rgb, 0.5, overlay, 0.5, 0, overlay);
         char name[64];
         std::snprintf(name, sizeof(name), "%.6f.png", images.stamp);
-        cv::imwrite((fs::path(save_dir) / name).string(), overlay);
+        writeImageFile((fs::path(save_dir) / name).string(), overlay);
       }
     }
     std::cout << std::fixed << std::setprecision(1)

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/synth/synthetic_sequence.h"
@@ -51,49 +52,40 @@ long parseInteger(const std::string& option, const std::string& text, long min, 
   return *value;
 }
 
+void setFlag(Options& o, const std::string& flag) {
+  (flag == "--loop" ? o.synth.loop : flag == "--noise" ? o.synth.noise : o.benchmark) = true;
+}
+
+void setOption(Options& o, const std::string& arg, const std::string& value) {
+  if (arg == "--out") {
+    o.out = value;
+  } else if (arg == "--scene") {
+    if (!parseSceneKind(value, &o.synth.scene))
+      usage("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
+  } else if (arg == "--walkers") {
+    o.synth.walkers = static_cast<int>(parseInteger(arg, value, 0, 255));
+  } else if (arg == "--frames") {
+    o.synth.frames = static_cast<int>(parseInteger(arg, value, 2, 1000000));
+    o.frames_given = true;
+  } else if (arg == "--seed") {
+    o.synth.seed = static_cast<uint64_t>(parseInteger(arg, value, 0, 2147483647L));
+  } else if (arg == "--textures") {
+    o.synth.texture_dir = value;
+  }
+}
+
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--loop") {
-      o.synth.loop = true;
-      continue;
-    }
-    if (arg == "--noise") {
-      o.synth.noise = true;
-      continue;
-    }
-    if (arg == "--benchmark") {
-      o.benchmark = true;
-      continue;
-    }
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kUsage;
-      std::exit(0);
-    }
-    if (arg.rfind("--", 0) != 0) usage("unexpected argument '" + arg + "'");
-    static const char* kWithValue[] = {"--out",    "--scene", "--walkers",
-                                       "--frames", "--seed",  "--textures"};
-    if (std::find(std::begin(kWithValue), std::end(kWithValue), arg) == std::end(kWithValue))
-      usage("unknown option " + arg);
-    if (i + 1 >= argc) usage("missing value after " + arg);
-    const std::string value = argv[++i];
-    if (arg == "--out") {
-      o.out = value;
-    } else if (arg == "--scene") {
-      if (!parseSceneKind(value, &o.synth.scene))
-        usage("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
-    } else if (arg == "--walkers") {
-      o.synth.walkers = static_cast<int>(parseInteger(arg, value, 0, 255));
-    } else if (arg == "--frames") {
-      o.synth.frames = static_cast<int>(parseInteger(arg, value, 2, 1000000));
-      o.frames_given = true;
-    } else if (arg == "--seed") {
-      o.synth.seed = static_cast<uint64_t>(parseInteger(arg, value, 0, 2147483647L));
-    } else if (arg == "--textures") {
-      o.synth.texture_dir = value;
-    }
-  }
+  CommandLine line;
+  line.usage_text = kUsage;
+  line.flags = {"--loop", "--noise", "--benchmark"};
+  line.options = {"--out", "--scene", "--walkers", "--frames", "--seed", "--textures"};
+  line.on_flag = [&](const std::string& flag) { setFlag(o, flag); };
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    setOption(o, arg, value);
+  };
+  line.fail = [](const std::string& error) { usage(error); };
+  line.parse(argc, argv);
   if (!o.benchmark && o.out.empty()) usage("--out DIR is required");
   if (!o.frames_given) o.synth.frames = defaultFrames(o.synth.scene);
   if (o.benchmark && !o.frames_given) o.synth.frames = kBenchmarkFrames;

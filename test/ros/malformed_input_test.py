@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """rostest: publishes the frames of a shared TUM sequence itself, at 30 Hz, with malformed
 messages between the good ones (wrong encodings, sizes that disagree with camera_info, empty
-images, truncated data, stamps going backwards). The nodes must skip the bad ones, say why,
-and keep tracking every good frame as accurately as the offline run."""
+images, truncated data, stamps going backwards, camera_info with a NaN in K or D). The nodes
+must skip the bad ones, say why, and keep tracking every good frame as accurately as the
+offline run."""
+import copy
 import os
 import shutil
 import subprocess
@@ -54,6 +56,15 @@ def bad_pairs(rgb, depth, stamp, first_stamp):
     ]
 
 
+def not_finite_info(info, i):
+    bad = copy.deepcopy(info)
+    if i % 20 == 0:
+        bad.D = [float("nan")] + list(bad.D[1:]) if bad.D else [float("nan")] * 5
+    else:
+        bad.K = [float("nan")] + list(bad.K[1:])
+    return bad
+
+
 class MalformedInput(unittest.TestCase):
     def test_nodes_survive_and_keep_tracking(self):
         sequence = support.shared_path(rospy.get_param("~sequence"))
@@ -82,7 +93,13 @@ class MalformedInput(unittest.TestCase):
         sent_bad = 0
         first_stamp = goods[0][0].header.stamp
         for i, (rgb, depth, info) in enumerate(goods):
-            publishers[INFO].publish(info)
+            # A camera_info with a NaN in D (first frame: the only one there) or in K: refused,
+            # never used for intrinsics (it once took mapping_node down at the first keyframe).
+            if i % 10 == 0:
+                publishers[INFO].publish(not_finite_info(info, i))
+                sent_bad += 1
+            if i > 0:
+                publishers[INFO].publish(info)
             publishers[RGB].publish(rgb)
             publishers[DEPTH].publish(depth)
             time.sleep(1.0 / 60)
@@ -104,13 +121,30 @@ class MalformedInput(unittest.TestCase):
         ate = support.ate_rmse(sequence, trajectory)
         print("sent %d good, %d bad; stats %s; ATE %.6f m (offline %.6f m)" % (
             len(goods), sent_bad, stats.values, ate["rmse"], offline_ate))
-        alive = subprocess.run(["rosnode", "ping", "-c", "1", "/ply_slam/tracking_node"],
-                               capture_output=True, text=True)
-        self.assertEqual(alive.returncode, 0, alive.stdout + alive.stderr)
-        for kind in ("encoding", "size", "empty"):
+        for node in ("/ply_slam/tracking_node", "/ply_slam/mapping_node"):
+            alive = subprocess.run(["rosnode", "ping", "-c", "1", node],
+                                   capture_output=True, text=True)
+            self.assertEqual(alive.returncode, 0, alive.stdout + alive.stderr)
+        for kind in ("encoding", "size", "empty", "camera_info"):
             self.assertGreater(stats.get(kind), 0, "no '%s' fault reported" % kind)
         self.assertEqual(stats.get("tracked"), offline_frames)
+        self.check_save_map_names_what_it_cannot_write(work)
         self.assertLessEqual(ate["rmse"], rospy.get_param("~ate_factor", 1.5) * offline_ate)
+
+
+    def check_save_map_names_what_it_cannot_write(self, work):
+        """The octree linked to /dev/full (a full disk): save_map must answer success: false
+        naming it, and still write the other files (it used to answer success)."""
+        folder = os.path.join(work, "map")
+        os.makedirs(folder)
+        if not os.path.exists("/dev/full"):
+            return
+        os.symlink("/dev/full", os.path.join(folder, "semantic_octree.ot"))
+        success, message = support.save_map(folder)
+        self.assertFalse(success, message)
+        self.assertIn("semantic_octree.ot", message)
+        for name in ("map_points.ply", "keyframes.csv", "octree.bt", "CameraTrajectory.txt"):
+            self.assertTrue(os.path.isfile(os.path.join(folder, name)), name)
 
 
 if __name__ == "__main__":

@@ -149,6 +149,14 @@ def check_grid(test, folder):
     test.assertTrue(pixels <= {0, 205, 254})
 
 
+def save_map(path):
+    """(success, message) of the mapper's save_map."""
+    SaveToPath = import_service_type()
+    rospy.wait_for_service(SAVE_MAP, timeout=30)
+    response = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(path)
+    return response.success, response.message
+
+
 def wait_for_nodes(timeout=30):
     """Both nodes are up: the mapper's service exists and the tracker's subscribers are there."""
     rospy.wait_for_service(SAVE_TRAJECTORY, timeout=timeout)

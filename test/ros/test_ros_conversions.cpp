@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 #include <ros/serialization.h>
 
+#include <cmath>
+#include <limits>
+
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/grid_map_message.h"
 
@@ -30,6 +33,17 @@ Eigen::Isometry3d somePose(double a) {
 
 void expectSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   EXPECT_LT((a.matrix() - b.matrix()).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+// EXPECT that `convert` throws std::invalid_argument whose message names `field`.
+template <typename Convert>
+void expectRejectedNaming(Convert convert, const std::string& field) {
+  try {
+    convert();
+    ADD_FAILURE() << "accepted a bad " << field;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+  }
 }
 
 bool sameImage(const cv::Mat& a, const cv::Mat& b) {
@@ -131,6 +145,54 @@ TEST(RosConversions, InconsistentKeyFrameIsRejected) {
   msg = toMsg(fullPacket(), "map");
   msg.depth.encoding = "16UC1";
   EXPECT_THROW(fromMsg(msg), std::invalid_argument);
+}
+
+// A NaN or absurd number in a message must not reach the map: it is refused with the field.
+TEST(RosConversions, NotFiniteNumbersAreRejected) {
+  KeyFrameMsg msg = toMsg(fullPacket(), "map");
+  msg.camera.distortion[0] = std::nan("");
+  expectRejectedNaming([&] { fromMsg(msg); }, "distortion");
+  msg = toMsg(fullPacket(), "map");
+  msg.camera.fx = 1e-300;
+  expectRejectedNaming([&] { fromMsg(msg); }, "fx");
+  msg = toMsg(fullPacket(), "map");
+  msg.camera.depth_noise_alpha = std::nan("");
+  expectRejectedNaming([&] { fromMsg(msg); }, "depth_noise.alpha");
+  msg = toMsg(fullPacket(), "map");
+  msg.T_wc.position.y = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(fromMsg(msg), std::invalid_argument);
+  msg = toMsg(fullPacket(), "map");
+  msg.points[1].position.z = std::nan("");
+  EXPECT_THROW(fromMsg(msg), std::invalid_argument);
+  MapUpdate u;
+  u.points = {{11, {0.1, std::nan(""), 0.3}}};
+  EXPECT_THROW(fromMsg(toMsg(u, "map")), std::invalid_argument);
+}
+
+sensor_msgs::CameraInfo someCameraInfo() {
+  sensor_msgs::CameraInfo info;
+  info.width = 640;
+  info.height = 480;
+  info.K = {517.3, 0, 318.6, 0, 516.5, 255.3, 0, 0, 1};
+  info.D = {0.26, -0.95, -0.005, 0.002, 1.16};
+  return info;
+}
+
+TEST(RosConversions, CameraInfoIsCheckedLikeTheConfig) {
+  const PinholeCamera camera = cameraFromInfo(someCameraInfo(), PinholeCamera());
+  EXPECT_EQ(camera.fx, 517.3);
+  EXPECT_EQ(camera.cy, 255.3);
+  EXPECT_EQ(camera.width, 640);
+  EXPECT_EQ(camera.distortion.at<double>(0, 4), 1.16);
+  sensor_msgs::CameraInfo info = someCameraInfo();
+  info.D[1] = std::nan("");
+  expectRejectedNaming([&] { cameraFromInfo(info, PinholeCamera()); }, "distortion");
+  info = someCameraInfo();
+  info.K[4] = std::numeric_limits<double>::infinity();
+  expectRejectedNaming([&] { cameraFromInfo(info, PinholeCamera()); }, "fy");
+  info = someCameraInfo();
+  info.width = 0;
+  expectRejectedNaming([&] { cameraFromInfo(info, PinholeCamera()); }, "width");
 }
 
 TEST(RosConversions, MapUpdateRoundTrip) {

@@ -2,8 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "ply_slam/common/config.h"
@@ -34,6 +36,8 @@ class ConfigSection {
     } catch (const YAML::Exception&) {
       fail(key, "has the wrong type (value '" + YAML::Dump(v) + "')");
     }
+    // YAML reads .nan and .inf as numbers; no setting may be one.
+    if (!allFinite(value)) fail(key, "must be a finite number (value '" + YAML::Dump(v) + "')");
   }
 
   template <typename T>
@@ -87,6 +91,18 @@ class ConfigSection {
   std::string path(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
 
  private:
+  template <typename T>
+  static bool allFinite(const T& value) {
+    if constexpr (std::is_floating_point_v<T>) return std::isfinite(value);
+    return true;
+  }
+  template <typename T>
+  static bool allFinite(const std::vector<T>& values) {
+    for (const T& v : values)
+      if (!allFinite(v)) return false;
+    return true;
+  }
+
   // The file the section came from, when it came from one.
   std::string where() const { return file_.empty() ? "config: " : "config " + file_ + ": "; }
 

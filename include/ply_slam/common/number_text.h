@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace ply_slam {
 
@@ -11,5 +12,7 @@ namespace ply_slam {
 std::optional<long> parseWholeNumber(const std::string& text, long min, long max);
 // A finite decimal number (strtod syntax), or nothing.
 std::optional<double> parseRealNumber(const std::string& text);
+// An image size "WxH" (e.g. "640x480"), each side in [1, 100000]: (width, height), or nothing.
+std::optional<std::pair<int, int>> parseImageSize(const std::string& text);
 
 }  // namespace ply_slam

@@ -10,8 +10,8 @@ namespace ply_slam {
 
 // Writes the maps into `folder` (created if missing): dense_map.pcd and dense_map.ply (x y z,
 // rgb, label), semantic_octree.ot (ColorOcTree, opens in octovis), octree.bt (occupancy only)
-// and map_legend.txt (the classes in the maps, with their colours). Returns the paths written;
-// throws std::runtime_error naming the file that could not be written.
+// and map_legend.txt (the classes in the maps, with their colours). Returns the paths written.
+// Every file is tried; then std::runtime_error names each that could not be written.
 std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& dense,
                                         const SemanticOctree& octree);
 

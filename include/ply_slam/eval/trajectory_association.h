@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -11,5 +12,9 @@ namespace ply_slam {
 // each pose used once, closest pairs first (TUM associate.py semantics).
 std::vector<std::pair<size_t, size_t>> associateByStamp(const Trajectory& a, const Trajectory& b,
                                                         double max_dt = 0.02);
+
+// The first two poses (indices, in file order) with the same stamp, if any: such a pose would
+// be paired with two ground-truth poses and count twice.
+std::optional<std::pair<size_t, size_t>> findRepeatedStamp(const Trajectory& trajectory);
 
 }  // namespace ply_slam

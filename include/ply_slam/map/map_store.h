@@ -30,10 +30,15 @@ class MapStore {
 
   // Writes everything it holds into `folder` (created): KeyFrameTrajectory.txt (TUM),
   // map_points.ply, map_lines.ply (segments as edges) and keyframes.csv (id, frame, stamp,
-  // features, landmarks, instances). Throws std::runtime_error naming a file it cannot write.
+  // features, landmarks, instances). Each file is whole or not there (AtomicFile); every file
+  // is tried, then std::runtime_error names each that could not be written.
   void save(const std::string& folder) const;
 
  private:
+  void writePoints(const std::string& path) const;
+  void writeLines(const std::string& path) const;
+  void writeKeyFrameTable(const std::string& path) const;
+
   std::map<long, KeyFramePacket> keyframes_;
   std::map<long, LandmarkPoint> points_;
   std::map<long, LandmarkLine> lines_;

@@ -4,17 +4,25 @@
 #include <geometry_msgs/Pose.h>
 #include <ply_slam/KeyFrameMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
+#include <sensor_msgs/CameraInfo.h>
 
 #include <Eigen/Geometry>
 #include <string>
 
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/map/key_frame_packet.h"
 
 namespace ply_slam {
 
 geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& T);
-// Throws std::invalid_argument when the quaternion is not finite or near zero length.
+// Throws std::invalid_argument when the quaternion is not finite or near zero length, or the
+// position is not finite.
 Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose);
+
+// `base` with the intrinsics and size of a camera_info (plumb_bob / rational_polynomial: the
+// first five coefficients are OpenCV's k1 k2 p1 p2 k3). Throws std::invalid_argument naming
+// the field when a number is not finite or absurd (the checks of the config's camera).
+PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera base);
 
 // `world_frame` goes into header.frame_id.
 KeyFrameMsg toMsg(const KeyFramePacket& packet, const std::string& world_frame);

@@ -1,0 +1,16 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ply_slam {
+
+// The dimensions of an ONNX model's first graph input (e.g. {1, 3, 480, 640} for a YOLOv8
+// export of height 480 and width 640), read straight from the protobuf file: OpenCV DNN runs
+// a fixed-size export on an input of the same area but transposed sides without a word, with
+// anchors and masks then silently wrong. A dimension without a fixed value is -1; empty when
+// the file holds no input shape. Throws std::runtime_error naming a file it cannot read.
+std::vector<std::int64_t> readOnnxInputShape(const std::string& path);
+
+}  // namespace ply_slam

@@ -1,0 +1,253 @@
+// The tools as a user runs them: --help and unknown options, and the bad inputs of a hostile
+// user (a folder as the config, options that do nothing, a ground truth that does not fit the
+// run, outputs that cannot be written, duplicate and huge poses for ply_slam_eval).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shared_data.h"
+#include "temp_dir.h"
+
+namespace ply_slam {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kTools = {
+    "ply_slam_eval",        "ply_slam_lines",         "ply_slam_loops",
+    "ply_slam_map_compare", "ply_slam_rgbd_odometry", "ply_slam_segment",
+    "ply_slam_synth",       "ply_slam_tum",           "ply_slam_vocabulary"};
+
+std::string readAll(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs TOOL with `arguments` (already quoted where needed) in `dir`.
+Result run(const TempDir& dir, const std::string& tool, const std::string& arguments) {
+  const std::string command = "cd '" + dir.path().string() + "' && '" PLY_SLAM_TOOL_DIR "/" + tool +
+                              "' " + arguments + " >stdout.txt 2>stderr.txt";
+  const int status = std::system(command.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = readAll(dir.path() / "stdout.txt");
+  r.err = readAll(dir.path() / "stderr.txt");
+  return r;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(ToolsCommandLine, EveryToolPrintsItsUsageForHelp) {
+  TempDir dir;
+  for (const auto& tool : kTools) {
+    const Result r = run(dir, tool, "--help");
+    EXPECT_EQ(r.exit_code, 0) << tool << ": " << r.err;
+    EXPECT_TRUE(contains(r.out, "usage: " + tool)) << tool << " printed: " << r.out;
+  }
+}
+
+TEST(ToolsCommandLine, EveryToolNamesAnUnknownOption) {
+  TempDir dir;
+  for (const auto& tool : kTools)
+    for (const std::string& option : {"--bogus", "--no-line"}) {
+      const std::string arguments = tool == "ply_slam_eval" ? "ate " + option : option;
+      const Result r = run(dir, tool, arguments);
+      EXPECT_NE(r.exit_code, 0) << tool;
+      EXPECT_TRUE(contains(r.err, "unknown option " + option)) << tool << " said: " << r.err;
+    }
+}
+
+// Each tool's main goes through CommandLine (one behaviour for --help and unknown options).
+TEST(ToolsCommandLine, EveryToolParsesWithCommandLine) {
+  for (const auto& tool : kTools) {
+    if (tool == "ply_slam_eval") continue;  // a command first, then its options: its own parser
+    const std::string source =
+        readAll(fs::path(PLY_SLAM_SOURCE_DIR) / "src" / "tools" / (tool + ".cpp"));
+    EXPECT_TRUE(contains(source, "CommandLine line;")) << tool;
+  }
+}
+
+const std::string kSequence = "data/tum/rgbd_dataset_freiburg1_xyz_37";
+
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+std::string tumArguments(const std::string& sequence, const std::string& out) {
+  return "--sequence " + quoted(sequence) + " --config " +
+         quoted(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml") + " --out " +
+         quoted(out) + " --no-loop";
+}
+
+TEST(ToolsCommandLine, AFolderAsConfigAndAModelWithoutYoloAreErrors) {
+  TempDir dir;
+  const std::string sequence = test::sharedPath(kSequence);
+  Result r = run(
+      dir, "ply_slam_tum",
+      "--sequence " + quoted(sequence) + " --config " + quoted(dir.path().string()) + " --out out");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(contains(r.err, dir.path().string()) && contains(r.err, "directory")) << r.err;
+  r = run(dir, "ply_slam_tum", tumArguments(sequence, "out") + " --model m.onnx");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--segmenter yolo")) << r.err;
+  r = run(dir, "ply_slam_loops",
+          "--sequence " + quoted(sequence) + " --config " + quoted(dir.path().string()) +
+              " --out out --input 320x320");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_TRUE(contains(r.err, "--segmenter yolo")) << r.err;
+}
+
+// The sequence's images with a ground truth 1000 s later: nothing to pair with.
+std::string sequenceWithLateGroundTruth(const TempDir& dir) {
+  const fs::path source = test::sharedPath(kSequence);
+  const fs::path copy = dir.path() / "late_gt";
+  fs::create_directory(copy);
+  for (const char* name : {"rgb", "depth", "rgb.txt", "depth.txt", "associations.txt"})
+    fs::create_symlink(source / name, copy / name);
+  std::ifstream in(source / "groundtruth.txt");
+  std::ofstream out(copy / "groundtruth.txt");
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    double stamp;
+    fields >> stamp;
+    std::string rest;
+    std::getline(fields, rest);
+    out << std::fixed << stamp + 1000.0 << rest << '\n';
+  }
+  return copy.string();
+}
+
+TEST(ToolsCommandLine, AGroundTruthThatDoesNotFitStillGivesEveryOutput) {
+  PLY_SLAM_REQUIRE_SHARED(test::sharedPath(kSequence));
+  TempDir dir;
+  const std::string sequence = sequenceWithLateGroundTruth(dir);
+  const Result r = run(dir, "ply_slam_tum", tumArguments(sequence, "out"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_TRUE(contains(r.err, "groundtruth.txt")) << r.err;
+  for (const char* name : {"CameraTrajectory.txt", "KeyFrameTrajectory.txt", "timing.csv",
+                           "summary.json", "trajectory.png", "semantic_octree.ot", "octree.bt",
+                           "map_legend.txt", "map_top.png", "dense_map.pcd", "dense_map.ply"})
+    EXPECT_TRUE(fs::exists(dir.path() / "out" / name)) << name;
+  const std::string summary = readAll(dir.path() / "out" / "summary.json");
+  EXPECT_TRUE(contains(summary, "\"evaluation_error\"")) << summary;
+  EXPECT_TRUE(contains(summary, sequence + "/groundtruth.txt")) << summary;
+  EXPECT_FALSE(contains(summary, "\"ate\"")) << summary;
+}
+
+TEST(ToolsCommandLine, AnOutputThatCannotBeWrittenIsNamedAndFailsTheRun) {
+  PLY_SLAM_REQUIRE_SHARED(test::sharedPath(kSequence));
+  TempDir dir;
+  fs::create_directories(dir.path() / "out" / "summary.json");
+  if (fs::exists("/dev/full")) fs::create_symlink("/dev/full", dir.path() / "out" / "timing.csv");
+  const Result r = run(dir, "ply_slam_tum",
+                       tumArguments(test::sharedPath(kSequence), "out") + " --max-frames 8");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(contains(r.err, "out/summary.json")) << r.err;
+  if (fs::exists("/dev/full")) EXPECT_TRUE(contains(r.err, "out/timing.csv")) << r.err;
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "CameraTrajectory.txt"));
+}
+
+TEST(ToolsCommandLine, AMapWithoutDenseCloudSaysSo) {
+  PLY_SLAM_REQUIRE_SHARED(test::sharedPath(kSequence));
+  TempDir dir;
+  const Result r = run(dir, "ply_slam_tum",
+                       tumArguments(test::sharedPath(kSequence), "out") + " --max-frames 2");
+  EXPECT_TRUE(contains(r.err, "dense_map.pcd and dense_map.ply not written")) << r.err;
+  const std::string summary = readAll(dir.path() / "out" / "summary.json");
+  EXPECT_TRUE(contains(summary, "\"files_left_out\"")) << summary;
+  // Two frames cannot be evaluated against the ground truth (ATE needs three): said too.
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_TRUE(contains(summary, "only 2 tracked frames")) << summary;
+}
+
+// The process's own high-water mark (MiB), from wait4: the figure summary.json must give.
+double runForPeakRssMb(const std::vector<std::string>& arguments, const fs::path& log) {
+  std::vector<char*> argv;
+  for (const auto& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return -1.0;
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? usage.ru_maxrss / 1024.0 : -1.0;
+}
+
+// peak_rss_mb was taken before the dense maps were finished: 186 MiB reported, 214 MiB used.
+TEST(ToolsCommandLine, PeakRssIsTheWholeRunsHighWaterMark) {
+  const std::string sequence = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
+  PLY_SLAM_REQUIRE_SHARED(sequence);
+  TempDir dir;
+  const double measured =
+      runForPeakRssMb({PLY_SLAM_TOOL_DIR "/ply_slam_tum", "--sequence", sequence, "--config",
+                       std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml", "--out",
+                       (dir.path() / "out").string(), "--no-loop"},
+                      dir.path() / "log.txt");
+  ASSERT_GT(measured, 0.0) << readAll(dir.path() / "log.txt");
+  const std::string summary = readAll(dir.path() / "out" / "summary.json");
+  const size_t at = summary.find("\"peak_rss_mb\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  const double reported = std::stod(summary.substr(at + 15));
+  EXPECT_NEAR(reported, measured, 0.02 * measured) << "reported " << reported << " MiB";
+}
+
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+const char* const kGroundTruth =
+    "1.00 0 0 0 0 0 0 1\n1.10 1 0 0 0 0 0 1\n1.20 2 0 0 0 0 0 1\n1.30 3 0 0 0 0 0 1\n";
+
+TEST(ToolsCommandLine, EvalRefusesAStampGivenTwice) {
+  TempDir dir;
+  writeText(dir.path() / "gt.txt", kGroundTruth);
+  writeText(dir.path() / "est.txt",
+            "1.00 0 0 0 0 0 0 1\n1.10 1 0 0 0 0 0 1\n1.10 1 0 0 0 0 0 1\n1.30 3 0 0 0 0 0 1\n");
+  const Result r = run(dir, "ply_slam_eval", "ate gt.txt est.txt --json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(contains(r.err, "est.txt") && contains(r.err, "twice")) << r.err;
+}
+
+TEST(ToolsCommandLine, EvalNeverPrintsNanForHugeCoordinates) {
+  TempDir dir;
+  writeText(dir.path() / "gt.txt", kGroundTruth);
+  writeText(dir.path() / "est.txt",
+            "1.00 1e308 0 0 0 0 0 1\n1.10 -1e308 0 0 0 0 0 1\n1.20 1e308 0 0 0 0 0 1\n"
+            "1.30 -1e308 0 0 0 0 0 1\n");
+  for (const char* command : {"ate", "rpe"}) {
+    const Result r = run(dir, "ply_slam_eval", std::string(command) + " gt.txt est.txt --json");
+    EXPECT_EQ(r.exit_code, 1) << command << ": " << r.out;
+    EXPECT_FALSE(contains(r.out, "nan") || contains(r.out, "inf")) << r.out;
+    EXPECT_TRUE(contains(r.err, "est.txt") && contains(r.err, "line 1")) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace ply_slam
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
