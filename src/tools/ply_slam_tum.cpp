@@ -577,11 +577,12 @@ int run(const Options& options) {
   json.update(evaluation.fields);
   const std::string title =
       "ply_slam  " + fs::path(sequence.folder()).filename().string() + evaluation.title;
-  if (dense)
+  if (dense) {
     Json grid;
     json["dense"] = finishDenseMaps(*dense, system, config, trajectory, out, title,
                                     walker_masks != nullptr, outputs, grid);
     if (!grid.is_null()) json["grid"] = grid;
+  }
   if (!failure.empty()) json["error"] = failure;
   if (!evaluation.error.empty()) json["evaluation_error"] = evaluation.error;
   outputs.attempt([&] {
