@@ -3,11 +3,13 @@
 // The one place that knows both worlds (DESIGN.md): library structs <-> ROS messages, 1:1.
 #include <geometry_msgs/Pose.h>
 #include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
 
 #include <Eigen/Geometry>
 #include <string>
 
+#include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/map/key_frame_packet.h"
 
 namespace ply_slam {
@@ -24,5 +26,13 @@ KeyFramePacket fromMsg(const KeyFrameMsg& msg);
 
 MapUpdateMsg toMsg(const MapUpdate& update, const std::string& world_frame);
 MapUpdate fromMsg(const MapUpdateMsg& msg);
+
+// A MapSnapshotMsg's keyframes (images empty) and tracked poses (camera -> world, in time order).
+struct MapSnapshot {
+  std::vector<KeyFramePacket> keyframes;
+  Trajectory trajectory;
+};
+// Throws std::invalid_argument as the keyframe and pose conversions do.
+MapSnapshot fromMsg(const MapSnapshotMsg& msg);
 
 }  // namespace ply_slam
