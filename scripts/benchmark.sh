@@ -167,21 +167,7 @@ trap 'rm -f "$ROWS" "$SECTION"' EXIT
 } >"$SECTION"
 
 mkdir -p "$(dirname "$RESULTS")"
-"$PY" - "$RESULTS" "$SECTION" <<'EOF'
-import os, sys
-results, section_path = sys.argv[1:3]
-begin, end = "<!-- benchmark:begin -->", "<!-- benchmark:end -->"
-with open(section_path) as f:
-    section = f.read().rstrip("\n")
-text = open(results).read() if os.path.exists(results) else "# Results\n"
-b, e = text.find(begin), text.find(end)
-if b != -1 and e > b:
-    text = text[:b] + section + text[e + len(end):]
-else:
-    text = text.rstrip("\n") + "\n\n" + section + "\n"
-with open(results, "w") as f:
-    f.write(text)
-EOF
+"$PY" "${PLY_SLAM_ROOT}/scripts/results_section.py" benchmark "$RESULTS" "$SECTION"
 
 cat "$ROWS"
 echo "[benchmark] table written to ${RESULTS}"

@@ -510,6 +510,20 @@ TEST(LoopCorrectionSection, OutOfRangeAndUnknownKeysNameTheKey) {
             0);
 }
 
+// Found by fuzz/fuzz_config: a list or map as a key ("? " form) threw yaml-cpp's
+// TypedBadConversion out of loadConfig instead of a ConfigError naming the section.
+TEST(ConfigText, AKeyThatIsNotANameIsAConfigError) {
+  const std::string base =
+      "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n";
+  try {
+    loadConfigFromString(base + "dynamic:\n  ? {mode: full}\n  : 1\n", "test");
+    FAIL() << "a map as a key was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("dynamic."), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(loadConfigFromString(base + "? [a, b]\n: 1\n", "test"), ConfigError);
+}
+
 }  // namespace
 }  // namespace ply_slam
 

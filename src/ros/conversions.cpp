@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "ply_slam/common/camera_check.h"
+#include "ply_slam/ros/image_layout.h"
 
 namespace ply_slam {
 namespace {
@@ -137,6 +138,9 @@ cv::Mat fromImageMsg(const sensor_msgs::Image& m, const std::string& encoding,
   if (m.encoding != encoding)
     throw std::invalid_argument("keyframe " + what + " must be " + encoding + ", not " +
                                 m.encoding);
+  // cv_bridge checks the layout too, but with 32-bit sums that a huge width wraps round.
+  const std::string error = imageLayoutError(m);
+  if (!error.empty()) throw std::invalid_argument("keyframe " + what + ": " + error);
   return cv_bridge::toCvCopy(m, encoding)->image;
 }
 
@@ -293,6 +297,14 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.erased_keyframes.assign(m.erased_keyframes.begin(), m.erased_keyframes.end());
   u.whole_map = m.whole_map;
   return u;
+}
+
+MapSnapshot fromMsg(const MapSnapshotMsg& m) {
+  MapSnapshot s;
+  for (const auto& k : m.keyframes) s.keyframes.push_back(fromMsg(k));
+  for (const auto& p : m.trajectory)
+    s.trajectory.push_back({p.header.stamp.toSec(), fromPoseMsg(p.pose)});
+  return s;
 }
 
 }  // namespace ply_slam

@@ -224,16 +224,15 @@ void MappingNode::onMissed(uint64_t missed, const std::string& what) {
 // The tracker's whole map: the store and the trajectory become it (what arrived after it was made
 // stays); the dense maps drop what the map culled meanwhile and re-place the rest.
 void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
-  std::vector<KeyFramePacket> keyframes;
-  Trajectory poses;
+  MapSnapshot snapshot;
   try {
-    for (const auto& k : msg->keyframes) keyframes.push_back(fromMsg(k));
-    for (const auto& p : msg->trajectory)
-      poses.push_back({p.header.stamp.toSec(), fromPoseMsg(p.pose)});
+    snapshot = fromMsg(*msg);
   } catch (const std::exception& e) {
     bad_input_.report("map_snapshot", e.what());
     return;
   }
+  const std::vector<KeyFramePacket>& keyframes = snapshot.keyframes;
+  Trajectory& poses = snapshot.trajectory;
   MapUpdate placed;
   placed.whole_map = true;
   {

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "ply_slam/ros/image_layout.h"
+
 namespace ply_slam {
 namespace {
 
@@ -18,12 +20,8 @@ std::string sizeOf(const sensor_msgs::Image& m) {
 void checkLayout(const sensor_msgs::Image& m, const std::string& what) {
   if (m.width == 0 || m.height == 0 || m.data.empty())
     throw BadRgbdMessage("empty", what + " image is empty");
-  if (m.step < m.width * static_cast<uint32_t>(enc::numChannels(m.encoding) *
-                                               (enc::bitDepth(m.encoding) / 8)) ||
-      m.data.size() != static_cast<size_t>(m.step) * m.height)
-    throw BadRgbdMessage("size", what + " image " + sizeOf(m) + " has " +
-                                     std::to_string(m.data.size()) + " bytes, step " +
-                                     std::to_string(m.step));
+  const std::string error = imageLayoutError(m);
+  if (!error.empty()) throw BadRgbdMessage("size", what + " image " + error);
 }
 
 }  // namespace
@@ -41,6 +39,8 @@ RgbdImages RgbdMessageDecoder::decode(const sensor_msgs::Image& rgb,
   if (!metres && !units)
     throw BadRgbdMessage("encoding", "depth image encoding '" + depth.encoding +
                                          "' (expected 32FC1 in m or 16UC1 in mm)");
+  if (depth.is_bigendian)  // cv_bridge would turn it into a 4-channel byte image
+    throw BadRgbdMessage("encoding", "depth image is big-endian (only little-endian is read)");
   checkLayout(rgb, "colour");
   checkLayout(depth, "depth");
   if (rgb.width != depth.width || rgb.height != depth.height)

@@ -72,6 +72,8 @@ class ConfigSection {
   void rejectUnknownKeys() const {
     if (!node_.IsDefined() || node_.IsNull()) return;
     for (const auto& kv : node_) {
+      // A list or map as a key (YAML's "? " form) is a mistake to report, not to convert.
+      if (!kv.first.IsScalar()) fail("'" + YAML::Dump(kv.first) + "'", "is not a key name");
       const auto key = kv.first.as<std::string>();
       if (!used_.count(key)) fail(key, "is not a known key");
     }

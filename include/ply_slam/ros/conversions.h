@@ -3,6 +3,7 @@
 // The one place that knows both worlds (DESIGN.md): library structs <-> ROS messages, 1:1.
 #include <geometry_msgs/Pose.h>
 #include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <sensor_msgs/CameraInfo.h>
 
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/map/key_frame_packet.h"
 
 namespace ply_slam {
@@ -32,5 +34,13 @@ KeyFramePacket fromMsg(const KeyFrameMsg& msg);
 
 MapUpdateMsg toMsg(const MapUpdate& update, const std::string& world_frame);
 MapUpdate fromMsg(const MapUpdateMsg& msg);
+
+// A MapSnapshotMsg's keyframes (images empty) and tracked poses (camera -> world, in time order).
+struct MapSnapshot {
+  std::vector<KeyFramePacket> keyframes;
+  Trajectory trajectory;
+};
+// Throws std::invalid_argument as the keyframe and pose conversions do.
+MapSnapshot fromMsg(const MapSnapshotMsg& msg);
 
 }  // namespace ply_slam

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Builds the package with AddressSanitizer + UndefinedBehaviorSanitizer into its own workspace,
+# build/ws_sanitize (build/ws stays the Release build), and runs the tests there.
+#   scripts/sanitize.sh [--fast] [--no-build]
+# --fast: only the gtests that take under half a minute (not SANITIZE_SLOW_TESTS): what CI runs.
+# Any UB stops the test that hit it (-fno-sanitize-recover); third-party leaks are suppressed
+# by scripts/sanitizers/lsan.supp, UB findings in third-party headers by ubsan.supp.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+
+fast=false build=true
+for arg in "$@"; do
+  case "$arg" in
+    --fast) fast=true ;;
+    --no-build) build=false ;;
+    *) echo "usage: scripts/sanitize.sh [--fast] [--no-build]" >&2; exit 2 ;;
+  esac
+done
+
+PLY_SLAM_WS="${PLY_SLAM_ROOT}/build/ws_sanitize"
+SAN_DIR="${PLY_SLAM_ROOT}/scripts/sanitizers"
+# -O1, as ASan's documentation advises for speed with usable reports; -g1: line tables only.
+SAN_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+SAN_CMAKE_ARGS=(
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
+  "-DCMAKE_CXX_FLAGS=${SAN_FLAGS}"
+  "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined"
+  "-DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=address,undefined"
+)
+
+# Tests that take more than half a minute under the sanitizers (measured, docs/RESULTS.md):
+# left out by --fast, and not even built.
+SANITIZE_SLOW_TESTS="${SANITIZE_SLOW_TESTS:-test_loop_closure|test_bonn_crowd|test_end_to_end|test_map_line_accuracy_synthetic|test_dynamic_rejection|test_line_tracking|test_line_accuracy_synthetic|test_semantic_masks|test_relocalisation|test_synth|rostest}"
+
+# The gtest targets --fast builds: every test/test_*.cpp and the ROS layer's, but the slow ones.
+fast_targets() {
+  local src
+  for src in "${PLY_SLAM_ROOT}"/test/test_*.cpp "${PLY_SLAM_ROOT}"/test/ros/test_*.cpp; do
+    basename "$src" .cpp
+  done | grep -vE "^(${SANITIZE_SLOW_TESTS})\$"
+}
+
+# Leaks: on, with the third-party ones suppressed; a leak in our code fails the test.
+export ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1"
+export LSAN_OPTIONS="suppressions=${SAN_DIR}/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=${SAN_DIR}/ubsan.supp"
+
+start=$(date +%s)
+if $build; then
+  ply_slam_install_packages
+  echo "[sanitize] building with ASan + UBSan (log: ${PLY_SLAM_WS}/build.log)"
+  if $fast; then  # the fast gtests only: no tools, no nodes, no slow tests
+    # shellcheck disable=SC2046
+    ply_slam_build "${SAN_CMAKE_ARGS[@]}" $(fast_targets)
+  else
+    ply_slam_build "${SAN_CMAKE_ARGS[@]}"
+    ply_slam_build "${SAN_CMAKE_ARGS[@]}" tests
+  fi
+fi
+built=$(date +%s)
+echo "[sanitize] build: $((built - start)) s"
+
+# The tests read build/vocabulary, trained by the Release tool (test.sh runs first); the
+# sanitized tool trains them only when they are missing (it is newer, so ply_slam_vocabularies
+# would otherwise retrain them every time).
+vocabulary="${PLY_SLAM_ROOT}/build/vocabulary"
+if [ ! -f "${vocabulary}/orb_k10_l5.voc" ] || [ ! -f "${vocabulary}/lbd_k10_l5.voc" ]; then
+  PLY_SLAM_BIN="${PLY_SLAM_WS}/devel/lib/ply_slam" ply_slam_vocabularies
+fi
+
+cd "${PLY_SLAM_WS}/build"
+exclude=()
+$fast && exclude=(-E "${SANITIZE_SLOW_TESTS}")
+status=0
+ctest --output-on-failure --no-tests=error -j1 "${exclude[@]}" || status=$?
+echo "[sanitize] tests: $(($(date +%s) - built)) s$($fast && echo " (fast: without ${SANITIZE_SLOW_TESTS})")"
+exit $status
