@@ -87,9 +87,12 @@ CameraMsg toMsg(const PinholeCamera& c) {
   m.cy = c.cy;
   m.width = c.width;
   m.height = c.height;
-  cv::Mat d;
-  if (!c.distortion.empty()) c.distortion.convertTo(d, CV_64F);
-  m.distortion.assign(d.begin<double>(), d.end<double>());
+  // An empty Mat's iterators divide by its zero columns: no distortion, no iterators.
+  if (!c.distortion.empty()) {
+    cv::Mat d;
+    c.distortion.convertTo(d, CV_64F);
+    m.distortion.assign(d.begin<double>(), d.end<double>());
+  }
   m.depth_factor = c.depth_factor;
   m.min_depth = c.min_depth;
   m.max_depth = c.max_depth;

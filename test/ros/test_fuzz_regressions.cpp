@@ -107,8 +107,16 @@ TEST(FuzzRegressions, BigEndianDepthIsRejected) {
     EXPECT_EQ(e.kind(), "encoding") << e.what();
   }
 
-  ply_slam::KeyFrameMsg msg;
-  msg.T_wc.orientation.w = 1.0;
+  // A keyframe that is valid but for its depth's byte order (a valid camera: the camera is
+  // checked before the images).
+  ply_slam::KeyFramePacket packet;
+  packet.camera.fx = packet.camera.fy = 500.0;
+  packet.camera.cx = 2.0, packet.camera.cy = 1.0;
+  packet.camera.width = 4, packet.camera.height = 2;
+  packet.camera.depth_factor = 5000, packet.camera.min_depth = 0.3, packet.camera.max_depth = 6;
+  packet.camera.depth_noise = {2.5e-5, 1e-6, 1e-5, 0.0};
+  ply_slam::KeyFrameMsg msg = ply_slam::toMsg(packet, "map");
+  ASSERT_NO_THROW(ply_slam::fromMsg(msg));
   msg.depth = depth;
   EXPECT_THROW(ply_slam::fromMsg(msg), std::invalid_argument);
   msg.depth.is_bigendian = 0;
