@@ -35,8 +35,10 @@ void DenseMappingWorker::push(std::shared_ptr<const KeyFramePacket> packet, cv::
   enqueue({std::move(packet), std::move(tag_mask), nullptr, {}});
 }
 
-void DenseMappingWorker::erase(std::vector<long> keyframe_ids) {
-  if (!keyframe_ids.empty()) enqueue({nullptr, cv::Mat(), nullptr, std::move(keyframe_ids)});
+void DenseMappingWorker::follow(const MapUpdate& update) {
+  if (!update.erased_keyframes.empty())
+    enqueue({nullptr, cv::Mat(), nullptr, update.erased_keyframes});
+  if (update.whole_map) push(update);
 }
 
 void DenseMappingWorker::push(const MapUpdate& update) {
@@ -76,6 +78,7 @@ void DenseMappingWorker::process(const Job& job) {
         std::lock_guard<std::mutex> lock(maps_mutex_);
         octree_.insert(cloud);
         map_.insert(std::move(cloud));
+        ++octree_revision_;
       }
       const double ms = watch.elapsedMs();
       std::lock_guard<std::mutex> lock(queue_mutex_);
@@ -86,6 +89,7 @@ void DenseMappingWorker::process(const Job& job) {
       // Ray casting cannot be undone per keyframe: the octree is rebuilt in keyframe order.
       octree_.clear();
       for (const auto& [id, cloud] : map_.keyFrames()) octree_.insert(cloud);
+      ++octree_revision_;
     } else if (!job.erased.empty()) {
       std::lock_guard<std::mutex> lock(maps_mutex_);
       map_.erase(job.erased);

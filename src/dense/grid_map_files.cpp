@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <locale>
-#include <opencv2/imgcodecs.hpp>
-#include <stdexcept>
+#include <sstream>
+
+#include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/image_file.h"
 
 namespace ply_slam {
 
@@ -28,21 +29,21 @@ std::vector<std::string> writeGridMap(const std::string& folder, const Occupancy
   const std::string yaml = (fs::path(folder) / "map.yaml").string();
   // An empty grid still makes a loadable map: one unknown cell.
   const cv::Mat image = grid.width() > 0 ? gridMapImage(grid) : cv::Mat(1, 1, CV_8UC1, 205);
-  if (!cv::imwrite(pgm, image)) throw std::runtime_error("cannot write " + pgm);
+  writeImageFile(pgm, image);
 
-  const Eigen::Vector3d corner =
-      T_frame_floor * Eigen::Vector3d(grid.origin().x(), grid.origin().y(), 0.0);
-  const double yaw = std::atan2(T_frame_floor(1, 0), T_frame_floor(0, 0));
-  std::ofstream out(yaml);
+  const Eigen::Isometry3d corner = grid.corner(T_frame_floor);
+  const double yaw = std::atan2(corner(1, 0), corner(0, 0));
+  std::ostringstream out;
   out.imbue(std::locale::classic());
   out.precision(9);
   out << "image: map.pgm\n"
       << "resolution: " << grid.resolution() << "\n"
-      << "origin: [" << corner.x() << ", " << corner.y() << ", " << yaw << "]\n"
+      << "origin: [" << corner.translation().x() << ", " << corner.translation().y() << ", " << yaw
+      << "]\n"
       << "negate: 0\n"
       << "occupied_thresh: 0.65\n"
       << "free_thresh: 0.196\n";
-  if (!out) throw std::runtime_error("cannot write " + yaml);
+  writeTextFileAtomically(yaml, out.str());
   return {pgm, yaml};
 }
 

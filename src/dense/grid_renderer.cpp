@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "ply_slam/dense/grid_map_files.h"
 #include "ply_slam/dense/map_drawing.h"
+#include "ply_slam/io/image_file.h"
 
 namespace ply_slam {
 
@@ -68,8 +68,7 @@ cv::Mat GridRenderer::render(const OccupancyGrid& grid, const Trajectory& trajec
 
 void GridRenderer::write(const std::string& png_path, const OccupancyGrid& grid,
                          const Trajectory& trajectory, const std::string& title) const {
-  if (!cv::imwrite(png_path, render(grid, trajectory, title)))
-    throw std::runtime_error("cannot write " + png_path);
+  writeImageFile(png_path, render(grid, trajectory, title));
 }
 
 }  // namespace ply_slam

@@ -46,25 +46,32 @@ std::set<std::uint32_t> OccupancyGridBuilder::labelsOf(const ClassPalette& palet
 
 OccupancyGrid OccupancyGridBuilder::build(const SemanticOctree& octree,
                                           const Trajectory& trajectory) const {
+  const std::vector<SemanticOctree::Voxel> voxels = octree.occupiedVoxels();
   std::vector<Eigen::Vector3d> static_points;
   double voxel_size = options_.resolution;
-  for (const auto& v : octree.occupiedVoxels())
+  for (const auto& v : voxels)
     if (!moving(v.label)) {
       static_points.push_back(v.surface);
       voxel_size = v.size;
     }
-  return build(octree,
+  return build(octree, voxels,
                FloorFrameEstimator(options_).estimate(static_points, voxel_size, trajectory));
 }
 
 OccupancyGrid OccupancyGridBuilder::build(const SemanticOctree& octree,
+                                          const FloorFrame& floor) const {
+  return build(octree, octree.occupiedVoxels(), floor);
+}
+
+OccupancyGrid OccupancyGridBuilder::build(const SemanticOctree& octree,
+                                          const std::vector<SemanticOctree::Voxel>& voxels,
                                           const FloorFrame& floor) const {
   const Eigen::Isometry3d T_floor_world = floor.T_world_floor.inverse();
   // Floor-frame xy of the voxels that decide cells: occupied ones in the band (where their
   // surface lies: with voxels as large as cells, the centre would often name the cell beside),
   // free ones between the floor and the robot's top.
   std::vector<Eigen::Vector2d> occupied, free;
-  for (const auto& v : octree.occupiedVoxels()) {
+  for (const auto& v : voxels) {
     if (moving(v.label)) continue;
     const Eigen::Vector3d p = T_floor_world * v.surface;
     if (p.z() >= options_.floor_clearance && p.z() <= options_.robot_height)

@@ -59,13 +59,12 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
   }
   correction->global_ba_ms = watch.elapsedMs();
   correction->ms += correction->global_ba_ms;
-  correction->update = wholeMap();
-  correction->update.whole_map = true;
   return correction;
 }
 
 MapUpdate Mapper::wholeMap() const {
   MapUpdate update;
+  update.whole_map = true;
   for (const auto& kf : map_.keyFrames()) {
     update.stamp = std::max(update.stamp, kf->stamp);
     update.keyframes.push_back({kf->id, kf->T_wc()});

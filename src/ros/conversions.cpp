@@ -302,6 +302,20 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   return u;
 }
 
+MapSnapshotMsg toMsg(const MapSnapshot& s, const std::string& world_frame) {
+  MapSnapshotMsg m;
+  m.header.frame_id = world_frame;
+  for (const auto& k : s.keyframes) m.keyframes.push_back(toMsg(k, world_frame));
+  for (const StampedPose& pose : s.trajectory) {
+    geometry_msgs::PoseStamped p;
+    p.header.stamp.fromSec(pose.stamp);
+    p.header.frame_id = world_frame;
+    p.pose = toPoseMsg(pose.T_wc);
+    m.trajectory.push_back(p);
+  }
+  return m;
+}
+
 MapSnapshot fromMsg(const MapSnapshotMsg& m) {
   MapSnapshot s;
   for (const auto& k : m.keyframes) s.keyframes.push_back(fromMsg(k));

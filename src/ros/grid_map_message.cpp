@@ -12,10 +12,7 @@ nav_msgs::OccupancyGrid toGridMsg(const OccupancyGrid& grid, const Eigen::Isomet
   msg.info.resolution = static_cast<float>(grid.resolution());
   msg.info.width = static_cast<std::uint32_t>(grid.width());
   msg.info.height = static_cast<std::uint32_t>(grid.height());
-  Eigen::Isometry3d corner = T_frame_floor;
-  corner.translation() +=
-      T_frame_floor.linear() * Eigen::Vector3d(grid.origin().x(), grid.origin().y(), 0.0);
-  msg.info.origin = toPoseMsg(corner);
+  msg.info.origin = toPoseMsg(grid.corner(T_frame_floor));
   msg.data = grid.cells();
   return msg;
 }

@@ -102,8 +102,11 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     dense_timer_ = nh_.createTimer(ros::Duration(period), &MappingNode::publishDense, this);
   }
   if (config.dense.enabled && config.grid.enabled) {
-    grid_options_ = config.grid;
-    moving_classes_ = config.dynamic.active_classes;
+    dense_->withMaps([&](DenseMap&, const SemanticOctree& octree) {
+      grid_builder_ = std::make_unique<OccupancyGridBuilder>(
+          config.grid,
+          OccupancyGridBuilder::labelsOf(octree.palette(), config.dynamic.active_classes));
+    });
     grid_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("grid_map", 1, true);
     const double period = pnh_.param("grid_publish_period", 2.0);
     if (!(period > 0.0)) throw std::invalid_argument("~grid_publish_period must be > 0 s");
@@ -184,7 +187,8 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     missed = update_sequence_.receive(msg->sequence);
-    AnchoredTrajectory::KeyFramePoses live = anchorPoses();
+    AnchoredTrajectory::KeyFramePoses live;
+    if (!update.erased_keyframes.empty()) live = anchorPoses();
     for (long id : update.erased_keyframes) live.erase(id);
     for (long id : update.erased_keyframes) {
       const auto erased = store_.keyFrames().find(id);
@@ -195,10 +199,7 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     ++map_updates_;
     loop_updates_ += update.whole_map;
   }
-  if (dense_) {
-    if (!update.erased_keyframes.empty()) dense_->erase(update.erased_keyframes);
-    if (update.whole_map) dense_->push(update);
-  }
+  if (dense_) dense_->follow(update);
   if (missed > 0) onMissed(missed, "map updates");
   publishMap(msg->header.stamp);
   noteCallbackMs(watch.elapsedMs());
@@ -252,10 +253,7 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
     }
     for (long id : placed.erased_keyframes) dense_keyframes_.erase(id);
   }
-  if (dense_) {
-    dense_->erase(placed.erased_keyframes);
-    dense_->push(placed);
-  }
+  if (dense_) dense_->follow(placed);
   ROS_INFO_STREAM("mapping_node: map restored from the tracker: "
                   << keyframes.size() << " keyframes, " << poses.size() << " poses"
                   << (dense_missing_ ? ", " + std::to_string(dense_missing_) +
@@ -459,19 +457,21 @@ void MappingNode::publishDense(const ros::TimerEvent&) {
   octomap_cloud_pub_.publish(toVoxelCloudMsg(voxels, header));
 }
 
-OccupancyGrid MappingNode::buildGrid(const Trajectory& trajectory,
-                                     const std::optional<Eigen::Isometry3d>& T_map_world,
-                                     Eigen::Isometry3d* T_frame_floor, std::string* grid_frame) {
-  OccupancyGrid grid;
-  dense_->withMaps([&](DenseMap&, const SemanticOctree& octree) {
-    const OccupancyGridBuilder builder(
-        grid_options_, OccupancyGridBuilder::labelsOf(octree.palette(), moving_classes_));
-    grid = builder.build(octree, trajectory);
-  });
-  *grid_frame = T_map_world ? map_frame_ : world_frame_;
+std::shared_ptr<const OccupancyGrid> MappingNode::gridOf(const SemanticOctree& octree,
+                                                         const Trajectory& trajectory) {
+  if (!grid_ || grid_revision_ != dense_->octreeRevision()) {
+    grid_ = std::make_shared<const OccupancyGrid>(grid_builder_->build(octree, trajectory));
+    grid_revision_ = dense_->octreeRevision();
+  }
+  return grid_;
+}
+
+std::string MappingNode::gridFrame(const OccupancyGrid& grid,
+                                   const std::optional<Eigen::Isometry3d>& T_map_world,
+                                   Eigen::Isometry3d* T_frame_floor) const {
   *T_frame_floor = T_map_world ? Eigen::Isometry3d(*T_map_world * grid.floor().T_world_floor)
                                : grid.floor().T_world_floor;
-  return grid;
+  return T_map_world ? map_frame_ : world_frame_;
 }
 
 void MappingNode::publishGrid(const ros::TimerEvent&) {
@@ -482,11 +482,14 @@ void MappingNode::publishGrid(const ros::TimerEvent&) {
     trajectory = cameraTrajectory();
     T_map_world = T_map_world_;
   }
+  std::shared_ptr<const OccupancyGrid> grid;
+  dense_->withMaps(
+      [&](DenseMap&, const SemanticOctree& octree) { grid = gridOf(octree, trajectory); });
   Eigen::Isometry3d T_frame_floor;
   std_msgs::Header header;
   header.stamp = ros::Time::now();
-  const OccupancyGrid grid = buildGrid(trajectory, T_map_world, &T_frame_floor, &header.frame_id);
-  grid_pub_.publish(toGridMsg(grid, T_frame_floor, header));
+  header.frame_id = gridFrame(*grid, T_map_world, &T_frame_floor);
+  grid_pub_.publish(toGridMsg(*grid, T_frame_floor, header));
 }
 
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
@@ -494,25 +497,24 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
   // Every part is tried; the answer names each file that could not be written.
   FileWrites files;
   files.attempt([&] { store_.save(request.path); });
+  const Trajectory trajectory = cameraTrajectory();
+  const std::filesystem::path folder(request.path);
+  files.attempt(
+      [&] { writeTumTrajectory((folder / "CameraTrajectory.txt").string(), trajectory); });
+  // The dense maps and the grid from one state of the octree.
   if (dense_)
-    files.attempt([&] {
-      dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
-        writeDenseMaps(request.path, map, octree);
-      });
-    });
-  files.attempt([&] {
-    writeTumTrajectory((std::filesystem::path(request.path) / "CameraTrajectory.txt").string(),
-                       cameraTrajectory());
-  });
-  if (grid_pub_)  // map.pgm + map.yaml in the frame ~grid_map is published in, grid.png
-    files.attempt([&] {
+    dense_->withMaps([&](DenseMap& map, const SemanticOctree& octree) {
+      files.attempt([&] { writeDenseMaps(request.path, map, octree); });
+      if (!grid_builder_) return;
+      // map.pgm + map.yaml in the frame ~grid_map is published in, grid.png
+      const std::shared_ptr<const OccupancyGrid> grid = gridOf(octree, trajectory);
       Eigen::Isometry3d T_frame_floor;
-      std::string frame;
-      const Trajectory trajectory = cameraTrajectory();
-      const OccupancyGrid grid = buildGrid(trajectory, T_map_world_, &T_frame_floor, &frame);
-      writeGridMap(request.path, grid, T_frame_floor);
-      GridRenderer().write((std::filesystem::path(request.path) / "grid.png").string(), grid,
-                           trajectory, "occupancy grid (" + frame + ")");
+      const std::string frame = gridFrame(*grid, T_map_world_, &T_frame_floor);
+      files.attempt([&] { writeGridMap(request.path, *grid, T_frame_floor); });
+      files.attempt([&] {
+        GridRenderer().write((folder / "grid.png").string(), *grid, trajectory,
+                             "occupancy grid (" + frame + ")");
+      });
     });
   try {
     files.throwFailures();

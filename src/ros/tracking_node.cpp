@@ -279,15 +279,13 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
   }
   if (result.keyframe_packet) {
     KeyFrameMsg msg = toMsg(*result.keyframe_packet, world_frame_);
-    msg.sequence = keyframe_sequence_++;
+    msg.sequence = keyframes_++;
     keyframe_pub_.publish(msg);
-    ++keyframes_;
   }
   if (result.map_update) {
     MapUpdateMsg msg = toMsg(*result.map_update, world_frame_);
-    msg.sequence = update_sequence_++;
+    msg.sequence = updates_++;
     map_update_pub_.publish(msg);
-    ++updates_;
     loops_ += result.loop_correction != nullptr;
   }
   if (!publish_images_) return;
@@ -304,22 +302,12 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
 }
 
 void TrackingNode::publishSnapshot() {
-  MapSnapshotMsg snapshot;
+  MapSnapshot map;
+  if (system_) map = {system_->sparseKeyFramePackets(), system_->cameraTrajectory()};
+  MapSnapshotMsg snapshot = toMsg(map, world_frame_);
   snapshot.header.stamp = ros::Time::now();
-  snapshot.header.frame_id = world_frame_;
-  snapshot.next_keyframe_sequence = keyframe_sequence_;
-  snapshot.next_update_sequence = update_sequence_;
-  if (system_) {
-    for (const KeyFramePacket& packet : system_->sparseKeyFramePackets())
-      snapshot.keyframes.push_back(toMsg(packet, world_frame_));
-    for (const StampedPose& pose : system_->cameraTrajectory()) {
-      geometry_msgs::PoseStamped p;
-      p.header.stamp.fromSec(pose.stamp);
-      p.header.frame_id = world_frame_;
-      p.pose = toPoseMsg(pose.T_wc);
-      snapshot.trajectory.push_back(p);
-    }
-  }
+  snapshot.next_keyframe_sequence = keyframes_;
+  snapshot.next_update_sequence = updates_;
   snapshot_pub_.publish(snapshot);
   ROS_INFO_STREAM("resend_map: sent " << snapshot.keyframes.size() << " keyframes and "
                                       << snapshot.trajectory.size() << " poses");

@@ -129,7 +129,6 @@ void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
   KeyFrame& keyframe = *result.tracking.new_keyframe;
   const KeyFrameInsertionStats mapped =
       mapper_.insertKeyFrame(result.tracking.new_keyframe, {tracker_.referenceKeyFrame()->id});
-  result.culled_keyframes = mapped.culled_keyframes;
   result.culled_points = mapped.culled_points;
   reanchorTrackedFrames(mapped.culled_keyframes);
   result.keyframe_packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
@@ -139,8 +138,7 @@ void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
     result.tracking.T_cw = result.tracking.T_cw * correction->world_correction.inverse();
     result.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
   }
-  MapUpdate update =
-      result.loop_correction ? result.loop_correction->update : mapper_.localUpdate(keyframe);
+  MapUpdate update = result.loop_correction ? mapper_.wholeMap() : mapper_.localUpdate(keyframe);
   update.erased_keyframes = mapped.culled_keyframes;
   result.map_update = std::make_shared<const MapUpdate>(std::move(update));
   result.timing.mapping_ms = mapping.elapsedMs();

@@ -373,7 +373,7 @@ struct RunCounts {
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     keyframes_created += r.tracking.new_keyframe != nullptr;
-    keyframes_culled += static_cast<long>(r.culled_keyframes.size());
+    if (r.map_update) keyframes_culled += static_cast<long>(r.map_update->erased_keyframes.size());
     points_culled += r.culled_points;
     total_ms.push_back(r.timing.total_ms);
     lines_ms.push_back(r.timing.lines_ms);
@@ -534,9 +534,8 @@ int run(const Options& options) {
               ? walkerPixels(instances, images.rgb.size(), config.dynamic)
               : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
       if (walker_masks) classification.add(r.features, walkers);
-      if (dense) dense->erase(r.culled_keyframes);
       if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
-      if (dense && r.loop_correction) dense->push(r.loop_correction->update);
+      if (dense && r.map_update) dense->follow(*r.map_update);
       if (r.loop_correction) corrections.push_back(r.loop_correction);
     } catch (const std::exception& e) {
       failure = e.what();

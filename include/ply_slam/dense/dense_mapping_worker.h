@@ -1,6 +1,8 @@
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -30,16 +32,20 @@ class DenseMappingWorker {
   void push(std::shared_ptr<const KeyFramePacket> packet, cv::Mat tag_mask = cv::Mat());
   // Queues pose corrections: changed keyframes are re-placed and the octree rebuilt.
   void push(const MapUpdate& update);
-  // Queues the erasure of keyframes the sparse map culled: their clouds leave the dense map
-  // (the keyframes that made them redundant see the same space). The octree keeps what they
-  // added until it is rebuilt from the remaining clouds after a pose correction.
-  void erase(std::vector<long> keyframe_ids);
+  // Queues what the sparse map changed with a keyframe: the keyframes it culled leave the dense
+  // map (those that made them redundant see the same space; the octree keeps what they added
+  // until its next rebuild); after a whole-map correction (a loop) the keyframes are re-placed as
+  // push(update) does. Local BA's updates move nothing here: a rebuild for millimetres is not
+  // worth it.
+  void follow(const MapUpdate& update);
   // Processes everything queued, then stops the thread. Idempotent.
   void finish();
 
   // Runs `f` with the maps while the worker is not changing them (e.g. to publish or save).
+  // Within `f`, octreeRevision() names the octree `f` sees.
   void withMaps(const std::function<void(DenseMap&, const SemanticOctree&)>& f);
 
+  std::uint64_t octreeRevision() const { return octree_revision_; }
   // ms spent per keyframe (cloud + dense map + octree), in arrival order.
   std::vector<double> keyFrameMs() const;
   size_t maxQueueLength() const;
@@ -74,6 +80,9 @@ class DenseMappingWorker {
   std::string first_error_;
 
   std::mutex maps_mutex_;
+  // Counts the octree's changes (written under maps_mutex_): what was derived from it can be
+  // kept while it stays the same.
+  std::atomic<std::uint64_t> octree_revision_{0};
   std::thread thread_;
 };
 

@@ -31,6 +31,11 @@ class OccupancyGrid {
   double resolution() const { return resolution_; }
   const Eigen::Vector2d& origin() const { return origin_; }  // floor xy of cell (0, 0)'s corner
   const FloorFrame& floor() const { return floor_; }
+  // Cell (0, 0)'s corner in the frame the floor frame lies at T_frame_floor in: map_server's and
+  // nav_msgs' grid origin.
+  Eigen::Isometry3d corner(const Eigen::Isometry3d& T_frame_floor) const {
+    return T_frame_floor * Eigen::Translation3d(origin_.x(), origin_.y(), 0.0);
+  }
   const std::vector<std::int8_t>& cells() const { return cells_; }
 
   std::int8_t at(int i, int j) const { return cells_[index(i, j)]; }

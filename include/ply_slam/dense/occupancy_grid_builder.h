@@ -38,6 +38,10 @@ class OccupancyGridBuilder {
 
  private:
   bool moving(std::uint32_t label) const { return moving_labels_.count(label) > 0; }
+  // `voxels`: the octree's occupied ones, taken once by the caller.
+  OccupancyGrid build(const SemanticOctree& octree,
+                      const std::vector<SemanticOctree::Voxel>& voxels,
+                      const FloorFrame& floor) const;
 
   OccupancyGridOptions options_;
   std::set<std::uint32_t> moving_labels_;

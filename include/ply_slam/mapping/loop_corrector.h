@@ -40,7 +40,6 @@ struct LoopCorrection {
   PoseGraphSummary pose_graph;
   double global_ba_ms = 0.0;  // the bundle adjustment of the whole map after the pose graph
   double ms = 0.0;            // the whole correction, global bundle adjustment included
-  MapUpdate update;           // the corrected map: every keyframe pose, point and line landmark
 };
 
 // Closes a verified loop in the map (ORB-SLAM's loop correction, SE(3) for RGB-D):

@@ -43,6 +43,8 @@ class Mapper {
   std::optional<LoopCorrection> closeLoop(KeyFrame& keyframe, const KeyFramePacket& packet);
   // Relocalisation candidates (keyframe ids, most similar first); empty without loop.enabled.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
+  // The whole map as a MapUpdate (whole_map set): after a loop, what copies of the map need.
+  MapUpdate wholeMap() const;
   // What local BA around `keyframe` may have moved: the poses of its window (itself and its
   // covisible keyframes) and the landmarks they see.
   MapUpdate localUpdate(const KeyFrame& keyframe) const;
@@ -53,8 +55,6 @@ class Mapper {
   }
 
  private:
-  // The whole map as a MapUpdate (after a loop: what the other side and the dense maps need).
-  MapUpdate wholeMap() const;
   KeyFrame* spanningTreeParent(const KeyFrame& keyframe) const;
 
   const SystemConfig config_;

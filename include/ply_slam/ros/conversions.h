@@ -42,5 +42,7 @@ struct MapSnapshot {
 };
 // Throws std::invalid_argument as the keyframe and pose conversions do.
 MapSnapshot fromMsg(const MapSnapshotMsg& msg);
+// Header and poses in `world_frame`; the sequence numbers and the stamp are the sender's.
+MapSnapshotMsg toMsg(const MapSnapshot& snapshot, const std::string& world_frame);
 
 }  // namespace ply_slam

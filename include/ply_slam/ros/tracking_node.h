@@ -73,7 +73,6 @@ class TrackingNode {
   ros::Subscriber info_sub_;
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
   ros::ServiceServer resend_srv_;
-  uint64_t keyframe_sequence_ = 0, update_sequence_ = 0;  // worker thread only
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();
@@ -97,7 +96,8 @@ class TrackingNode {
   bool stopping_ = false;
   std::thread worker_;
 
-  // Counters for ~stats and the shutdown report.
+  // Counters for ~stats and the shutdown report; keyframes_ and updates_ also number the
+  // keyframe and map-update messages (a mapper finds what it missed from the gaps).
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
       updates_{0}, loops_{0};

@@ -51,8 +51,8 @@ struct FrameResult {
   std::set<int> dynamic_instances;   // ids of the instances judged moving
   std::set<int> measured_instances;  // those of them this frame's own evidence found moving
   cv::Mat dynamic_mask;              // their dilated union (8UC1), empty when none
-  // The mapping side's culling after this frame's keyframe: keyframe ids erased, points retired.
-  std::vector<long> culled_keyframes;
+  // The mapping side's culling after this frame's keyframe: points retired (the keyframes erased
+  // are in map_update).
   int culled_points = 0;
   // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
   std::shared_ptr<const KeyFramePacket> keyframe_packet;
