@@ -1,25 +1,22 @@
-// Dense module, occupancy grid: the floor found in a tilted world, map_server's files, and the
-// grid of the synthetic office against the scene's exact geometry (walls and furniture in the
-// robot's height band occupied, the seen floor free, walkers never an obstacle).
+// Dense module, occupancy grid: the floor found in a tilted world, moving classes never an
+// obstacle, and map_server's files. (The synthetic office's grid against the scene's exact
+// geometry: test_occupancy_grid_office.)
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <set>
 
 #include "dense_test_scene.h"
+#include "temp_dir.h"
 #include "ply_slam/dense/floor_frame_estimator.h"
 #include "ply_slam/dense/grid_map_files.h"
 #include "ply_slam/dense/key_frame_cloud_builder.h"
 #include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/dense/semantic_octree.h"
-#include "ply_slam/synth/synthetic_sequence.h"
 
 namespace ply_slam {
 namespace {
@@ -176,8 +173,8 @@ TEST(OccupancyGridBuilder, APersonTheOctreeKeepsOccupiesNoCell) {
 
 class GridFilesTest : public ::testing::Test {
  protected:
-  fs::path dir_ = fs::temp_directory_path() / ("ply_slam_grid_" + std::to_string(::getpid()));
-  void TearDown() override { fs::remove_all(dir_); }
+  TempDir temp_;
+  const fs::path& dir_ = temp_.path();
 };
 
 // map_server's documented reading of a trinary map (negate 0): p = (255 - value) / 255,

@@ -6,7 +6,6 @@
 #include <pcl/point_types.h>
 
 #include <filesystem>
-#include <functional>
 #include <set>
 #include <stdexcept>
 
@@ -15,16 +14,11 @@
 
 namespace ply_slam {
 
-std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& dense,
-                                        const SemanticOctree& octree) {
+void writeDenseMaps(const std::string& folder, DenseMap& dense, const SemanticOctree& octree) {
   namespace fs = std::filesystem;
   fs::create_directories(folder);
   const fs::path dir(folder);
   FileWrites files;
-  std::vector<std::string> written;
-  const auto attempt = [&](const std::string& path, const std::function<void()>& write) {
-    if (files.attempt(write)) written.push_back(path);
-  };
 
   const DenseCloudPtr cloud = dense.globalCloud();
   // PCL refuses to write an empty cloud; an empty map is still a valid (empty) result.
@@ -33,13 +27,13 @@ std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& den
   to_write.height = 1;
   if (!to_write.empty()) {
     const std::string pcd = (dir / "dense_map.pcd").string();
-    attempt(pcd, [&] {
+    files.attempt([&] {
       writeFileAtomically(pcd, [&](const std::string& temp) {
         return pcl::io::savePCDFileBinary(temp, to_write) == 0;
       });
     });
     const std::string ply = (dir / "dense_map.ply").string();
-    attempt(ply, [&] {
+    files.attempt([&] {
       writeFileAtomically(ply, [&](const std::string& temp) {
         return pcl::io::savePLYFileBinary(temp, to_write) == 0;
       });
@@ -47,17 +41,16 @@ std::vector<std::string> writeDenseMaps(const std::string& folder, DenseMap& den
   }
 
   const std::string ot = (dir / "semantic_octree.ot").string();
-  attempt(ot, [&] { octree.writeColourTree(ot); });
+  files.attempt([&] { octree.writeColourTree(ot); });
   const std::string bt = (dir / "octree.bt").string();
-  attempt(bt, [&] { octree.writeBinaryTree(bt); });
+  files.attempt([&] { octree.writeBinaryTree(bt); });
 
   std::set<std::uint32_t> labels{ClassPalette::kUnknown};
   for (const auto& p : cloud->points) labels.insert(p.label);
   for (const auto& v : octree.occupiedVoxels()) labels.insert(v.label);
   const std::string legend = (dir / "map_legend.txt").string();
-  attempt(legend, [&] { octree.palette().writeLegend(legend, {labels.begin(), labels.end()}); });
+  files.attempt([&] { octree.palette().writeLegend(legend, {labels.begin(), labels.end()}); });
   files.throwFailures();
-  return written;
 }
 
 }  // namespace ply_slam

@@ -25,6 +25,7 @@
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/eval/pr_plot.h"
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/run_arguments.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/loop/loop_key_frame_builder.h"
@@ -50,8 +51,7 @@ constexpr const char* kUsage =
     "  vocabularies: the config's loop.orb_vocabulary / loop.lbd_vocabulary (\"\": the defaults\n"
     "    scripts/setup.sh trains into build/vocabulary/)\n";
 
-struct Options {
-  std::string sequence, config, out;
+struct Options : RunArguments {
   SegmenterChoice segmentation;
   long max_frames = -1;
   bool keep_long_links = false;
@@ -64,14 +64,8 @@ struct Options {
 }
 
 void setOption(Options& o, const std::string& arg, const std::string& value) {
-  if (o.segmentation.take(arg, value)) return;
-  if (arg == "--sequence") {
-    o.sequence = value;
-  } else if (arg == "--config") {
-    o.config = value;
-  } else if (arg == "--out") {
-    o.out = value;
-  } else if (arg == "--max-frames") {
+  if (o.segmentation.take(arg, value) || o.take(arg, value)) return;
+  if (arg == "--max-frames") {
     const auto n = parseWholeNumber(value, 1, 1000000000L);
     if (!n) usage("--max-frames needs a whole number >= 1, got '" + value + "'");
     o.max_frames = *n;
@@ -97,11 +91,10 @@ Options parse(int argc, char** argv) {
   try {
     line.parse(argc, argv);
     o.segmentation.check();
+    o.require();
   } catch (const std::invalid_argument& e) {
     usage(e.what());
   }
-  if (o.sequence.empty() || o.config.empty() || o.out.empty())
-    usage("--sequence, --config and --out are required");
   return o;
 }
 

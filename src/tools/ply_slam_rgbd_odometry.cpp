@@ -18,6 +18,7 @@
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/rgbd/depth.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,15 +26,13 @@
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/run_arguments.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
 namespace {
 
-struct Options {
-  std::string sequence;
-  std::string config;
-  std::string out;
+struct Options : ply_slam::RunArguments {
   std::string timing_json;
 };
 
@@ -54,19 +53,15 @@ Options parseOptions(int argc, char** argv) {
   line.usage_text = kUsage;
   line.options = {"--sequence", "--config", "--out", "--timing-json"};
   line.on_option = [&](const std::string& arg, const std::string& value) {
-    if (arg == "--sequence")
-      options.sequence = value;
-    else if (arg == "--config")
-      options.config = value;
-    else if (arg == "--out")
-      options.out = value;
-    else
-      options.timing_json = value;
+    if (!options.take(arg, value)) options.timing_json = value;
   };
   line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
-  if (options.sequence.empty() || options.config.empty() || options.out.empty())
-    usage("--sequence, --config and --out are required");
+  try {
+    options.require();
+  } catch (const std::invalid_argument& e) {
+    usage(e.what());
+  }
   return options;
 }
 

@@ -1,7 +1,4 @@
-// Offline run of ply_slam on a TUM RGB-D folder:
-//   ply_slam_tum --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
-//                [--model ONNX --input WxH] [--dynamic off|geometric|semantic|full] [--live]
-//                [--save-images N] [--max-frames N] [--no-lines] [--ground-truth-masks DIR]
+// Offline run of ply_slam on a TUM RGB-D folder (options: kUsage below).
 // Writes CameraTrajectory.txt, KeyFrameTrajectory.txt, timing.csv, summary.json and
 // trajectory.png into DIR, and with dense.enabled the dense maps (dense_map.pcd/.ply,
 // semantic_octree.ot, octree.bt, map_legend.txt, map_top.png) and, with grid.enabled, the
@@ -38,6 +35,7 @@
 #include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/image_file.h"
+#include "ply_slam/io/run_arguments.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/semantic/live_segmenter.h"
@@ -52,8 +50,7 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-struct Options {
-  std::string sequence, config, out;
+struct Options : RunArguments {
   long max_frames = -1;
   SegmenterChoice segmentation;
   bool no_lines = false;           // overrides lines.enabled of the config
@@ -98,14 +95,8 @@ long parseCount(const std::string& option, const std::string& text) {
 }
 
 void setOption(Options& o, const std::string& arg, const std::string& value) {
-  if (o.segmentation.take(arg, value)) return;
-  if (arg == "--sequence") {
-    o.sequence = value;
-  } else if (arg == "--config") {
-    o.config = value;
-  } else if (arg == "--out") {
-    o.out = value;
-  } else if (arg == "--ground-truth-masks") {
+  if (o.segmentation.take(arg, value) || o.take(arg, value)) return;
+  if (arg == "--ground-truth-masks") {
     o.ground_truth_masks = value;
   } else if (arg == "--max-frames") {
     o.max_frames = parseCount(arg, value);
@@ -124,8 +115,7 @@ void checkOptions(const Options& o) {
       usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
     }
   if (o.live && o.segmentation.kind == "none") usage("--live needs a segmenter");
-  if (o.sequence.empty() || o.config.empty() || o.out.empty())
-    usage("--sequence, --config and --out are required");
+  o.require();
 }
 
 Options parse(int argc, char** argv) {
