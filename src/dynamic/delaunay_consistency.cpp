@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 #include "ply_slam/common/statistics.h"
 
@@ -71,8 +72,8 @@ double DelaunayConsistency::noiseScale(const std::vector<double>& sigmas, double
 }
 
 std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorrespondence>& features,
-                                                 int width, int height,
-                                                 const StaticPrior& prior) const {
+                                                 int width, int height, const StaticPrior& prior,
+                                                 std::optional<StaticFit>* static_fit) const {
   std::vector<double> weight(features.size(), 0.0);
   if (features.size() < 3) return weight;
   const EdgeGraph graph = buildGraph(features, width, height);
@@ -91,7 +92,9 @@ std::vector<double> DelaunayConsistency::weights(const std::vector<FeatureCorres
         weight[i] = 1.0;
     return weight;
   }
-  const std::vector<bool> inlier = carriedByStaticMotion(features, seeds);
+  StaticFit fit;
+  const std::vector<bool> inlier = carriedByStaticMotion(features, seeds, fit);
+  if (static_fit) *static_fit = fit;
   // Now the moved end of a broken edge is known: the edge blames it alone.
   for (size_t i = 0; i < features.size(); ++i) {
     if (graph.edges_of[i] == 0) continue;
@@ -230,7 +233,8 @@ std::vector<bool> DelaunayConsistency::staticSeeds(
 }
 
 std::vector<bool> DelaunayConsistency::carriedByStaticMotion(
-    const std::vector<FeatureCorrespondence>& features, std::vector<bool> inlier) const {
+    const std::vector<FeatureCorrespondence>& features, std::vector<bool> inlier,
+    StaticFit& fit) const {
   // Distances along one edge are blind to motion across it, and long edges in depth are
   // noisy. The static features fix the camera's motion between the frames: every feature that
   // this motion does not carry onto its current position, beyond its noise, moved (this
@@ -245,8 +249,42 @@ std::vector<bool> DelaunayConsistency::carriedByStaticMotion(
     }
     const double scale = noiseScale(static_sigmas, 1.5382);  // median of a 3-DoF chi
     for (size_t i = 0; i < features.size(); ++i) inlier[i] = !exceeds(residuals[i], scale);
+    fit = {motion, scale, static_cast<size_t>(std::count(inlier.begin(), inlier.end(), true))};
   }
   return inlier;
+}
+
+bool DelaunayConsistency::movedApart(const std::vector<FeatureCorrespondence>& body,
+                                     const StaticFit& fit) const {
+  if (body.size() < 3) return false;
+  // The body's own motion: a fixed seed, so that runs repeat.
+  std::mt19937 random(static_cast<unsigned>(body.size()));
+  std::uniform_int_distribution<size_t> pick(0, body.size() - 1);
+  std::vector<bool> best;
+  size_t best_count = 0;
+  for (int round = 0; round < kBodyRansacRounds; ++round) {
+    std::vector<bool> use(body.size(), false);
+    for (int k = 0; k < 3; ++k) use[pick(random)] = true;
+    const Eigen::Isometry3d own = rigidMotion(body, use);
+    std::vector<bool> follows(body.size());
+    size_t count = 0;
+    for (size_t i = 0; i < body.size(); ++i) {
+      follows[i] = !exceeds(residual(body[i], own), fit.noise_scale);
+      count += follows[i];
+    }
+    if (count > best_count) {
+      best = std::move(follows);
+      best_count = count;
+    }
+  }
+  if (best_count < 3 || 2 * best_count < body.size()) return false;
+  const Eigen::Isometry3d own = rigidMotion(body, best);
+  FeatureCorrespondence centre{Eigen::Vector2d::Zero(), Eigen::Vector3d::Zero(),
+                               Eigen::Vector3d::Zero()};
+  for (size_t i = 0; i < body.size(); ++i)
+    if (best[i]) centre.previous += body[i].previous / static_cast<double>(best_count);
+  centre.current = own * centre.previous;
+  return exceeds(residual(centre, fit.motion), fit.noise_scale);
 }
 
 }  // namespace ply_slam

@@ -13,7 +13,8 @@ DynamicDecision DynamicFeatureFilter::decide(const std::vector<FeatureCorrespond
     const auto kind = motion.find(instance[i]);
     on_moving_class[i] = kind != motion.end() && kind->second == ClassMotion::kActive;
   }
-  d.weight = consistency_.weights(features, width, height, {predicted_motion, &on_moving_class});
+  d.weight = consistency_.weights(features, width, height, {predicted_motion, &on_moving_class},
+                                  &d.static_fit);
   d.dynamic.assign(features.size(), false);
 
   std::map<int, int> all, voted;  // per instance: N_all and w_lab

@@ -7,12 +7,14 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "ply_slam/dynamic/depth_surfaces.h"
 #include "ply_slam/features/best_two.h"
 
 namespace ply_slam {
 namespace {
 
 constexpr double kRatio = 0.8;  // best / second-best descriptor distance between frames
+constexpr uchar kNoMotion = DynamicRejection::kNoMotion;
 
 bool onMask(const cv::Mat& mask, double u, double v) {
   const int x = std::clamp(cvRound(u), 0, mask.cols - 1);
@@ -30,6 +32,10 @@ DynamicMode parseDynamicMode(const std::string& mode) {
   throw std::invalid_argument("dynamic mode '" + mode + "' (off, geometric, semantic or full)");
 }
 
+std::string modeWithoutSegmenter(const std::string& mode) {
+  return mode == "full" ? "geometric" : mode;
+}
+
 DynamicRejector::DynamicRejector(const DynamicParams& params, const PinholeCamera& camera)
     : params_(params),
       mode_(parseDynamicMode(params.mode)),
@@ -44,8 +50,11 @@ ClassMotion DynamicRejector::motionOf(const std::string& class_name) const {
   return ClassMotion::kStatic;
 }
 
-void DynamicRejector::remember(const FrameFeatures& current, double stamp) {
+void DynamicRejector::remember(const FrameFeatures& current, double stamp,
+                               const DynamicRejection& rejection) {
   if (mode_ != DynamicMode::kGeometric && mode_ != DynamicMode::kFull) return;
+  surface_age_ = rejection.surface_age;
+  surface_candidates_ = rejection.surface_candidates;
   earlier_.push_back({stamp, current});
   earlier_.back().features.depth_image.release();
   while (static_cast<int>(earlier_.size()) > params_.baseline_frames) earlier_.pop_front();
@@ -99,11 +108,111 @@ cv::Mat DynamicRejector::unionMask(const std::vector<Instance>& instances,
     if (mask.empty()) mask = cv::Mat::zeros(instance.mask.size(), CV_8UC1);
     mask |= instance.mask;
   }
+  return mask.empty() ? mask : dilated(mask);
+}
+
+cv::Mat DynamicRejector::dilated(const cv::Mat& mask) const {
   const int r = params_.mask_dilation_px;
-  if (!mask.empty() && r > 0)
-    cv::dilate(mask, mask,
-               cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
-  return mask;
+  if (r <= 0) return mask;
+  cv::Mat out;
+  cv::dilate(mask, out,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
+  return out;
+}
+
+void DynamicRejector::labelByInstances(const FrameFeatures& current,
+                                       const std::vector<size_t>& feature_of,
+                                       const std::vector<Instance>& instances,
+                                       std::vector<int>& label,
+                                       std::map<int, ClassMotion>& motion) const {
+  for (const auto& instance : instances) motion[instance.id] = motionOf(instance.class_name);
+  for (size_t k = 0; k < feature_of.size(); ++k) {
+    const cv::Point2f& pt = current.keypoints[feature_of[k]].pt;
+    for (const auto& instance : instances)
+      if (onMask(instance.mask, pt.x, pt.y)) {
+        label[k] = instance.id;
+        break;
+      }
+  }
+}
+
+DynamicRejector::SurfaceHistory DynamicRejector::labelBySurfaces(
+    const DepthSurfaces& surfaces, const FrameFeatures& current,
+    const std::vector<size_t>& feature_of, std::vector<int>& label,
+    std::map<int, ClassMotion>& motion) const {
+  std::map<int, int> matched;
+  for (size_t k = 0; k < feature_of.size(); ++k) {
+    const int surface = surfaces.at(current.keypoints[feature_of[k]].pt);
+    if (surface == 0) continue;
+    label[k] = surface;
+    ++matched[label[k]];
+  }
+  // A surface with fewer matched features than a person needs to be judged is left to the
+  // feature-wise check: one stray vote would otherwise drop it whole.
+  for (size_t k = 0; k < feature_of.size(); ++k)
+    if (label[k] != 0 && matched[label[k]] < params_.filter.min_judged_features) label[k] = 0;
+  // A surface that lies mostly where a surface was measured moving within carry_frames is
+  // presumed moving still (a person who stops for a moment is still a person) and judged as
+  // one (moved when a few of its features did); a surface not seen moving needs most of its
+  // features to have moved.
+  SurfaceHistory history;
+  if (!surface_age_.empty()) {
+    const std::vector<DepthSurfaces::Overlap> overlap = surfaces.overlap(surface_age_, kNoMotion);
+    for (int s = 1; s <= surfaces.count(); ++s)
+      if (overlap[s - 1].share > 0.5 && overlap[s - 1].median < params_.carry_frames)
+        history.presumed[s] = static_cast<uchar>(overlap[s - 1].median + 1);
+  }
+  if (!surface_candidates_.empty()) {
+    const std::vector<DepthSurfaces::Overlap> overlap =
+        surfaces.overlap(surface_candidates_, kNoMotion);
+    for (int s = 1; s <= surfaces.count(); ++s)
+      if (overlap[s - 1].share > 0.5 && overlap[s - 1].median < params_.carry_frames)
+        history.seen_moving[s] = static_cast<uchar>(overlap[s - 1].median + 1);
+  }
+  for (const auto& [id, n] : matched)
+    if (n >= params_.filter.min_judged_features)
+      motion[id] = history.presumed.count(id) || history.seen_moving.count(id)
+                       ? ClassMotion::kActive
+                       : ClassMotion::kPassive;
+  return history;
+}
+
+bool DynamicRejector::movedApart(const std::vector<FeatureCorrespondence>& matched,
+                                 const std::vector<int>& label, int id,
+                                 const DelaunayConsistency::StaticFit& fit) const {
+  std::vector<FeatureCorrespondence> body;
+  for (size_t k = 0; k < matched.size(); ++k)
+    if (label[k] == id) body.push_back(matched[k]);
+  return filter_.consistency().movedApart(body, fit);
+}
+
+bool DynamicRejector::minority(const std::vector<int>& label, int id,
+                               const DelaunayConsistency::StaticFit& fit) const {
+  const auto n = std::count(label.begin(), label.end(), id);
+  return static_cast<double>(n) < params_.filter.consistency.minority_share * fit.inliers;
+}
+
+void DynamicRejector::judgeSurfaces(const DepthSurfaces& surfaces, const DynamicDecision& d,
+                                    const std::vector<FeatureCorrespondence>& matched,
+                                    const std::vector<int>& label, SurfaceHistory history,
+                                    DynamicRejection& r) const {
+  // Moving: judged so by its features, and its own motion apart from the camera's. A surface
+  // not presumed moving and not clearly smaller than the static scene it was judged against
+  // must be seen so twice within carry_frames: one blurred frame in a fast turn can make a
+  // whole wall look moved against a wrong fit; a person walking moves on.
+  std::map<int, uchar>& candidates = history.seen_moving;  // aged on, those seen again move
+  for (int s : d.dynamic_instances) {
+    if (d.static_fit && !movedApart(matched, label, s, *d.static_fit)) continue;
+    if (history.presumed.count(s) || candidates.count(s) ||
+        (d.static_fit && minority(label, s, *d.static_fit))) {
+      history.presumed[s] = 0;
+      candidates.erase(s);
+    } else {
+      candidates[s] = 0;
+    }
+  }
+  if (!history.presumed.empty()) r.surface_age = surfaces.paint(history.presumed, kNoMotion);
+  if (!candidates.empty()) r.surface_candidates = surfaces.paint(candidates, kNoMotion);
 }
 
 DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double stamp,
@@ -113,52 +222,69 @@ DynamicRejection DynamicRejector::decide(const FrameFeatures& current, double st
   DynamicRejection r;
   r.fate.assign(current.size(), FeatureFate::kKept);
   if (mode_ == DynamicMode::kOff) return r;
-
   if (mode_ == DynamicMode::kSemantic) {
     for (const auto& instance : instances)
       if (motionOf(instance.class_name) == ClassMotion::kActive)
         r.dynamic_instances.insert(instance.id);
   } else {
-    std::vector<size_t> feature_of;
-    std::vector<FeatureCorrespondence> matched;
-    std::optional<Eigen::Isometry3d> T_cur_prev;
-    if (!earlier_.empty()) {
-      const Earlier& earlier = earlier_.front();
-      if (velocity && stamp > earlier.stamp) T_cur_prev = velocity->over(stamp - earlier.stamp);
-      matched = correspondences(earlier.features, current, T_cur_prev, feature_of);
-    }
-    // Labels only in full mode: geometric mode judges features alone.
-    std::vector<int> label(matched.size(), 0);
-    std::map<int, ClassMotion> motion;
-    if (mode_ == DynamicMode::kFull) {
-      for (const auto& instance : instances) motion[instance.id] = motionOf(instance.class_name);
-      for (size_t k = 0; k < matched.size(); ++k) {
-        const cv::Point2f& pt = current.keypoints[feature_of[k]].pt;
-        for (const auto& instance : instances)
-          if (onMask(instance.mask, pt.x, pt.y)) {
-            label[k] = instance.id;
-            break;
-          }
-      }
-    }
-    const DynamicDecision d = filter_.decide(matched, label, motion, camera_.width, camera_.height,
-                                             T_cur_prev ? &*T_cur_prev : nullptr);
-    for (size_t k = 0; k < matched.size(); ++k)
-      if (d.weight[k] > params_.filter.weight_threshold)
-        r.fate[feature_of[k]] = FeatureFate::kGeometric;
-    r.dynamic_instances = d.dynamic_instances;
-    r.measured_instances = d.measured;
-    // Semantic mode has every active instance dynamic already.
-    for (const auto& [id, kind] : motion)
-      if (kind == ClassMotion::kActive && presumed.count(id)) r.dynamic_instances.insert(id);
+    judgeByMotion(current, stamp, instances, velocity, presumed, r);
   }
-  r.dynamic_mask = unionMask(instances, r.dynamic_instances);
-  if (!r.dynamic_mask.empty())
-    for (size_t i = 0; i < current.size(); ++i)
-      if (r.fate[i] == FeatureFate::kKept &&
-          onMask(r.dynamic_mask, current.keypoints[i].pt.x, current.keypoints[i].pt.y))
-        r.fate[i] = FeatureFate::kSemantic;
+  dropWholeObjects(current, instances, r);
   return r;
+}
+
+void DynamicRejector::judgeByMotion(const FrameFeatures& current, double stamp,
+                                    const std::vector<Instance>& instances,
+                                    const CameraVelocity* velocity, const std::set<int>& presumed,
+                                    DynamicRejection& r) const {
+  std::vector<size_t> feature_of;
+  std::vector<FeatureCorrespondence> matched;
+  std::optional<Eigen::Isometry3d> T_cur_prev;
+  if (!earlier_.empty()) {
+    const Earlier& earlier = earlier_.front();
+    if (velocity && stamp > earlier.stamp) T_cur_prev = velocity->over(stamp - earlier.stamp);
+    matched = correspondences(earlier.features, current, T_cur_prev, feature_of);
+  }
+  // Full mode labels features by the segmenter's instances, geometric mode by the depth
+  // image's surfaces, judged as objects of unknown class.
+  std::vector<int> label(matched.size(), 0);
+  std::map<int, ClassMotion> motion;
+  std::optional<DepthSurfaces> surfaces;
+  SurfaceHistory history;
+  if (mode_ == DynamicMode::kFull) {
+    labelByInstances(current, feature_of, instances, label, motion);
+  } else if (!current.depth_image.empty()) {
+    surfaces.emplace(current.depth_image, camera_.depth_noise);
+    history = labelBySurfaces(*surfaces, current, feature_of, label, motion);
+  }
+  const DynamicDecision d = filter_.decide(matched, label, motion, camera_.width, camera_.height,
+                                           T_cur_prev ? &*T_cur_prev : nullptr);
+  for (size_t k = 0; k < matched.size(); ++k)
+    if (d.weight[k] > params_.filter.weight_threshold)
+      r.fate[feature_of[k]] = FeatureFate::kGeometric;
+  if (surfaces) {
+    judgeSurfaces(*surfaces, d, matched, label, std::move(history), r);
+    return;
+  }
+  r.dynamic_instances = d.dynamic_instances;
+  r.measured_instances = d.measured;
+  for (const auto& [id, kind] : motion)
+    if (kind == ClassMotion::kActive && presumed.count(id)) r.dynamic_instances.insert(id);
+}
+
+void DynamicRejector::dropWholeObjects(const FrameFeatures& current,
+                                       const std::vector<Instance>& instances,
+                                       DynamicRejection& r) const {
+  // Whole instances are the labels' judgement, whole surfaces the geometry's.
+  const bool by_surfaces = !r.surface_age.empty();
+  r.dynamic_mask =
+      by_surfaces ? dilated(r.surface_age != kNoMotion) : unionMask(instances, r.dynamic_instances);
+  if (r.dynamic_mask.empty()) return;
+  const FeatureFate whole = by_surfaces ? FeatureFate::kGeometric : FeatureFate::kSemantic;
+  for (size_t i = 0; i < current.size(); ++i)
+    if (r.fate[i] == FeatureFate::kKept &&
+        onMask(r.dynamic_mask, current.keypoints[i].pt.x, current.keypoints[i].pt.y))
+      r.fate[i] = whole;
 }
 
 std::vector<bool> DynamicRejector::linesTouching(const std::vector<LineFeature>& lines,

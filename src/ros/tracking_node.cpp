@@ -224,6 +224,7 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
                     << config.camera.fx << " fy " << config.camera.fy << " cx " << config.camera.cx
                     << " cy " << config.camera.cy);
   }
+  if (!segmenter_) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
   system_ = std::make_unique<System>(config);
 }
 

@@ -148,7 +148,8 @@ void System::rejectDynamic(FrameFeatures& features, double stamp,
                            const std::vector<Instance>& instances, FrameResult& result) {
   DynamicRejection rejection =
       rejector_.decide(features, stamp, instances, tracker_.velocity(), memory_.presumed());
-  rejector_.remember(features, stamp);  // all: a feature dropped now is judged again later
+  // All features: one dropped now is judged again later.
+  rejector_.remember(features, stamp, rejection);
   result.features.resize(features.size());
   std::vector<bool> drop(features.size());
   for (size_t i = 0; i < features.size(); ++i) {

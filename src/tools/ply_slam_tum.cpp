@@ -471,6 +471,7 @@ int run(const Options& options) {
   // Offline, every frame is segmented before it is tracked: runs are reproducible.
   std::unique_ptr<Segmenter> segmenter =
       options.segmentation.make(config.segmentation, sequence.folder());
+  if (!segmenter) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
   std::unique_ptr<LiveSegmenter> live;
   if (options.live) live = std::make_unique<LiveSegmenter>(std::move(segmenter));
   // Where there are ground-truth masks of the moving objects, the dynamic rejection and the

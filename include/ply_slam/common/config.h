@@ -116,8 +116,9 @@ struct DynamicFilterParams {
 
 // Dynamic-feature rejection (dynamic module).
 struct DynamicParams {
-  // off: use every feature; geometric: the Delaunay check alone; semantic: drop instances of
-  // active classes whole, no geometry; full: the paper's fusion of both.
+  // off: use every feature; geometric: the Delaunay check, per feature and per depth surface;
+  // semantic: drop instances of active classes whole, no geometry; full: the paper's fusion
+  // of both (without a segmenter: geometric, modeWithoutSegmenter).
   std::string mode = "full";
   DynamicFilterParams filter;
   int mask_dilation_px = 5;  // dynamic masks miss the blurred rim of a moving object

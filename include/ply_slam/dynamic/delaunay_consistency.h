@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <vector>
 
 #include "ply_slam/common/config.h"
@@ -38,9 +39,26 @@ class DelaunayConsistency {
   DelaunayConsistency(const PinholeCamera& camera, const DelaunayConsistencyParams& params)
       : camera_(camera), params_(params) {}
 
-  // Weight in [0, 1] per correspondence (0 for features without edges).
+  // The camera's motion fitted to the static scene (previous -> current) and how much larger
+  // than modelled the static features' noise was in this frame (>= 1).
+  struct StaticFit {
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    double noise_scale = 1.0;
+    size_t inliers = 0;  // features it carries
+  };
+
+  // Weight in [0, 1] per correspondence (0 for features without edges). static_fit, when
+  // given, receives the static scene's fit, or nothing when the scene was too small to fit.
   std::vector<double> weights(const std::vector<FeatureCorrespondence>& features, int width,
-                              int height, const StaticPrior& prior = {}) const;
+                              int height, const StaticPrior& prior = {},
+                              std::optional<StaticFit>* static_fit = nullptr) const;
+
+  // Whether `body` (the features of one object) moved apart from the static scene: most of
+  // them follow one rigid motion of their own (RANSAC: wrong matches follow none), and that
+  // motion carries their centre further from where the static motion does than noise allows
+  // (as for one feature, the frame's noise scale included: rolling shutter and blur bend a
+  // static surface's motion too).
+  bool movedApart(const std::vector<FeatureCorrespondence>& body, const StaticFit& fit) const;
 
  private:
   // A change in metres and in standard deviations of its modelled noise.
@@ -69,6 +87,7 @@ class DelaunayConsistency {
   Bodies growBodies(const EdgeGraph& graph) const;
   // Enough features to fit a motion to with some redundancy.
   static constexpr size_t kMinSeeds = 10;
+  static constexpr int kBodyRansacRounds = 30;  // triples tried for a body's own motion
   // Per feature: taken as static to fit the camera's motion to first; empty when nothing is
   // (no body with the 3 features a motion needs).
   std::vector<bool> staticSeeds(const std::vector<FeatureCorrespondence>& features,
@@ -76,7 +95,7 @@ class DelaunayConsistency {
   // Per feature: the motion fitted to the static features (starting from `inlier`) carries it
   // onto its current position.
   std::vector<bool> carriedByStaticMotion(const std::vector<FeatureCorrespondence>& features,
-                                          std::vector<bool> inlier) const;
+                                          std::vector<bool> inlier, StaticFit& fit) const;
 
   // Variance of a back-projected point along unit direction d: depth noise along its ray,
   // pixel noise across it.

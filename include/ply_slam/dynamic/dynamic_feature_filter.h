@@ -18,6 +18,7 @@ struct DynamicDecision {
   std::map<int, double> degree;     // instance id -> r_d = w_lab / N_all
   std::set<int> dynamic_instances;  // instances judged moving as a whole
   std::set<int> measured;           // those of them judged by their own r_d
+  std::optional<DelaunayConsistency::StaticFit> static_fit;  // none: scene too small to fit
 };
 
 // Fuses the geometric evidence with instance labels: features whose Delaunay weight exceeds
@@ -38,6 +39,7 @@ class DynamicFeatureFilter {
                          const std::vector<int>& instance, const std::map<int, ClassMotion>& motion,
                          int width, int height,
                          const Eigen::Isometry3d* predicted_motion = nullptr) const;
+  const DelaunayConsistency& consistency() const { return consistency_; }
 
  private:
   DelaunayConsistency consistency_;

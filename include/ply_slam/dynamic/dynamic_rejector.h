@@ -9,6 +9,7 @@
 
 #include "ply_slam/common/camera_velocity.h"
 #include "ply_slam/common/config.h"
+#include "ply_slam/dynamic/depth_surfaces.h"
 #include "ply_slam/dynamic/dynamic_feature_filter.h"
 #include "ply_slam/features/frame_features.h"
 #include "ply_slam/features/line_feature.h"
@@ -18,6 +19,9 @@ namespace ply_slam {
 
 enum class DynamicMode { kOff, kGeometric, kSemantic, kFull };
 DynamicMode parseDynamicMode(const std::string& mode);  // throws std::invalid_argument
+// Full mode without a segmenter has no labels to fuse: it judges the depth image's surfaces as
+// geometric mode does. Returns the mode to run with; the others are unchanged.
+std::string modeWithoutSegmenter(const std::string& mode);
 
 // Why a feature was left out of tracking, or that it was kept.
 enum class FeatureFate : unsigned char { kKept, kGeometric, kSemantic };
@@ -27,6 +31,13 @@ struct DynamicRejection {
   std::set<int> dynamic_instances;   // measured moving, or presumed so
   std::set<int> measured_instances;  // those whose own matched features found them moving
   cv::Mat dynamic_mask;              // 8UC1 dilated union of the dynamic instances; empty: none
+  // Per pixel of the depth image: frames since its depth surface was measured moving (0: this
+  // frame), kNoMotion where none is; empty when no surface moved.
+  cv::Mat surface_age;
+  // Frames since the surfaces seen moving once were seen so (kNoMotion elsewhere; empty:
+  // none): moving if seen so again within carry_frames.
+  cv::Mat surface_candidates;
+  static constexpr unsigned char kNoMotion = 255;
 };
 
 // PAPER.md §3.2 applied to one frame: matches the frame's features to an earlier frame's
@@ -46,8 +57,9 @@ class DynamicRejector {
   DynamicRejection decide(const FrameFeatures& current, double stamp,
                           const std::vector<Instance>& instances, const CameraVelocity* velocity,
                           const std::set<int>& presumed = {}) const;
-  // Keeps the frame's features (all of them, dynamic ones too) for the frames to come.
-  void remember(const FrameFeatures& current, double stamp);
+  // Keeps the frame's features (all of them, dynamic ones too) and the surfaces judged moving
+  // for the frames to come.
+  void remember(const FrameFeatures& current, double stamp, const DynamicRejection& rejection);
 
   // Lines whose start or end lies on a non-zero pixel of `mask` (PAPER.md §3.2 step 5).
   static std::vector<bool> linesTouching(const std::vector<LineFeature>& lines,
@@ -55,10 +67,44 @@ class DynamicRejector {
 
  private:
   ClassMotion motionOf(const std::string& class_name) const;
+  // Geometric and full mode: the Delaunay check over the features matched to the earlier
+  // frame, with the instances' or the surfaces' labels.
+  void judgeByMotion(const FrameFeatures& current, double stamp,
+                     const std::vector<Instance>& instances, const CameraVelocity* velocity,
+                     const std::set<int>& presumed, DynamicRejection& r) const;
+  // Sets r.dynamic_mask from the moving instances or surfaces and drops the features on it.
+  void dropWholeObjects(const FrameFeatures& current, const std::vector<Instance>& instances,
+                        DynamicRejection& r) const;
   std::vector<FeatureCorrespondence> correspondences(
       const FrameFeatures& previous, const FrameFeatures& current,
       const std::optional<Eigen::Isometry3d>& T_cur_prev, std::vector<size_t>& feature_of) const;
+  // The label of each matched feature (feature_of: its index in `current`) and each label's
+  // class kind: the segmenter's instances (full mode) or the depth image's surfaces (geometric).
+  void labelByInstances(const FrameFeatures& current, const std::vector<size_t>& feature_of,
+                        const std::vector<Instance>& instances, std::vector<int>& label,
+                        std::map<int, ClassMotion>& motion) const;
+  // What the last frames said of this frame's surfaces.
+  struct SurfaceHistory {
+    std::map<int, unsigned char> presumed;     // presumed moving: surface -> its age
+    std::map<int, unsigned char> seen_moving;  // seen moving once: surface -> frames since
+  };
+  SurfaceHistory labelBySurfaces(const DepthSurfaces& surfaces, const FrameFeatures& current,
+                                 const std::vector<size_t>& feature_of, std::vector<int>& label,
+                                 std::map<int, ClassMotion>& motion) const;
+  // The features labelled `id` are fewer than minority_share of the static scene's.
+  bool minority(const std::vector<int>& label, int id,
+                const DelaunayConsistency::StaticFit& fit) const;
+  // Sets r.surface_age and r.surface_candidates from this frame's decision.
+  void judgeSurfaces(const DepthSurfaces& surfaces, const DynamicDecision& d,
+                     const std::vector<FeatureCorrespondence>& matched,
+                     const std::vector<int>& label, SurfaceHistory history,
+                     DynamicRejection& r) const;
+  // The features labelled `id` moved apart from the static scene (DelaunayConsistency).
+  bool movedApart(const std::vector<FeatureCorrespondence>& matched, const std::vector<int>& label,
+                  int id, const DelaunayConsistency::StaticFit& fit) const;
+  // The instances `ids` as one mask, dilated; empty when none.
   cv::Mat unionMask(const std::vector<Instance>& instances, const std::set<int>& ids) const;
+  cv::Mat dilated(const cv::Mat& mask) const;  // by mask_dilation_px
 
   DynamicParams params_;
   DynamicMode mode_;
@@ -70,6 +116,8 @@ class DynamicRejector {
     FrameFeatures features;
   };
   std::deque<Earlier> earlier_;  // the last baseline_frames frames, oldest first
+  cv::Mat surface_age_;          // the last frame's DynamicRejection::surface_age
+  cv::Mat surface_candidates_;   // and its surface_candidates
 };
 
 }  // namespace ply_slam
