@@ -11,6 +11,7 @@
 #include "ply_slam/io/byte_reader.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/loop/binary_vocabulary.h"
+#include "ply_slam/loop/fnv1a.h"
 #include "ply_slam/system/system.h"
 #include "shared_data.h"
 #include "temp_dir.h"
@@ -144,6 +145,20 @@ TEST_F(MapFileTest, TruncatedFileIsRefused) {
 TEST_F(MapFileTest, FlippedByteFailsTheChecksum) {
   expectRefused(alteredCopy("flipped", [](auto& b) { b[b.size() / 2] ^= 0x10; }),
                 "checksum mismatch");
+}
+
+// A payload cut short with a checksum that fits it (a writer's bug, not damage): the records
+// do not add up, and the reader says so instead of reading past them.
+TEST_F(MapFileTest, ContentThatDoesNotAddUpIsRefused) {
+  const std::string folder = alteredCopy("short", [](std::vector<uint8_t>& b) {
+    constexpr size_t kHeader = 20, kChecksum = 8, kCut = 4;
+    b.erase(b.end() - kChecksum - kCut, b.end());
+    const uint64_t payload = b.size() - kHeader;
+    for (int i = 0; i < 8; ++i) b[12 + i] = static_cast<uint8_t>(payload >> (8 * i));
+    const uint64_t sum = fnv1a64(b.data(), b.size());
+    for (int i = 0; i < 8; ++i) b.push_back(static_cast<uint8_t>(sum >> (8 * i)));
+  });
+  expectRefused(folder, "inconsistent content");
 }
 
 TEST_F(MapFileTest, OtherVersionIsRefused) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "ply_slam/io/byte_reader.h"
 #include "ply_slam/loop/fnv1a.h"
@@ -276,7 +277,12 @@ MapFileContents decode(ByteReader& in, const MapFileSetup& stored,
   }
   if (map.keyframes.empty()) throw Inconsistent("no keyframes");
   const size_t points = count(in, 100);
-  for (size_t i = 0; i < points; ++i) map.points.push_back(point(in, index));
+  std::unordered_set<long> point_ids;
+  for (size_t i = 0; i < points; ++i) {
+    map.points.push_back(point(in, index));
+    if (!point_ids.insert(map.points.back()->id).second)
+      throw Inconsistent("point " + std::to_string(map.points.back()->id) + " stored twice");
+  }
   std::unordered_map<long, std::shared_ptr<MapLine>> line_index;
   const size_t lines = count(in, 100);
   for (size_t i = 0; i < lines; ++i) {
