@@ -97,7 +97,8 @@ TrackingResult Tracker::track(Frame& frame) {
       if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
-      fuseLineFits(frame);
+      // Localising in a loaded map leaves its geometry as it was saved.
+      if (!localisation_only_) fuseLineFits(frame);
       result.inliers = inliers;
       result.line_inliers = frame.numLineMatches();
       if (needKeyFrame(frame, inliers)) {
