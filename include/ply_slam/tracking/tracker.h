@@ -46,7 +46,8 @@ class Tracker {
   // A map loaded from a file: tracking starts lost, so that the first pose comes from
   // relocalisation in that map (never a new map at the identity).
   void startLost();
-  // Localisation in a loaded map: track against it, add no keyframes (and so no landmarks).
+  // Localisation in a loaded map: track against it, add no keyframes (and so no landmarks) and
+  // leave its geometry as it was saved.
   void setLocalisationOnly(bool only) { localisation_only_ = only; }
   TrackingState state() const { return state_; }
   // The camera's current velocity, null when unknown (start, after a loss).
