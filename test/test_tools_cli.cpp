@@ -215,6 +215,30 @@ TEST(ToolsCommandLine, PeakRssIsTheWholeRunsHighWaterMark) {
   EXPECT_NEAR(reported, measured, 0.02 * measured) << "reported " << reported << " MiB";
 }
 
+// --save-map writes a map that --map loads; a missing map and --localisation-only alone are
+// errors that say so.
+TEST(ToolsCommandLine, ASavedMapLoadsAgain) {
+  PLY_SLAM_REQUIRE_SHARED(test::sharedPath(kSequence));
+  TempDir dir;
+  const std::string sequence = test::sharedPath(kSequence);
+  Result r = run(dir, "ply_slam_tum",
+                 tumArguments(sequence, "mapped") + " --max-frames 10 --save-map saved");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir.path() / "saved" / "map.plymap"));
+  EXPECT_TRUE(contains(readAll(dir.path() / "mapped" / "summary.json"), "\"saved\""));
+  r = run(dir, "ply_slam_tum", tumArguments(sequence, "loaded") + " --max-frames 12 --map saved");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string summary = readAll(dir.path() / "loaded" / "summary.json");
+  EXPECT_TRUE(contains(summary, "\"first_tracked_frame\": 0")) << summary;
+  r = run(dir, "ply_slam_tum", tumArguments(sequence, "none") + " --map nowhere");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(contains(r.err, "nowhere/map.plymap") && contains(r.err, "cannot be opened"))
+      << r.err;
+  r = run(dir, "ply_slam_tum", tumArguments(sequence, "none") + " --localisation-only false");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--localisation-only needs --map")) << r.err;
+}
+
 void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 const char* const kGroundTruth =

@@ -85,27 +85,49 @@ RpeResult relativeErrors(const PosePairs& poses, const std::vector<std::pair<siz
 
 }  // namespace
 
-AteResult computeAte(const Trajectory& gt, const Trajectory& est, double max_dt) {
+namespace {
+
+struct AssociatedPositions {
+  std::vector<Eigen::Vector3d> gt, est;
+};
+
+AssociatedPositions associatedPositions(const Trajectory& gt, const Trajectory& est,
+                                        double max_dt) {
   const std::vector<std::pair<size_t, size_t>> pairs = associateByStamp(gt, est, max_dt);
   if (pairs.size() < 3) {
     throw std::runtime_error("ATE needs at least 3 pose pairs with stamps within max_dt, found " +
                              std::to_string(pairs.size()) + " (" + describeInputs(gt, est, max_dt) +
                              ")");
   }
-  std::vector<Eigen::Vector3d> gt_positions, est_positions;
+  AssociatedPositions positions;
   for (const auto& [i_gt, i_est] : pairs) {
-    gt_positions.push_back(gt[i_gt].T_wc.translation());
-    est_positions.push_back(est[i_est].T_wc.translation());
+    positions.gt.push_back(gt[i_gt].T_wc.translation());
+    positions.est.push_back(est[i_est].T_wc.translation());
   }
+  return positions;
+}
+
+AteResult ateWith(const AssociatedPositions& positions, const Eigen::Isometry3d& T_gt_est) {
   AteResult result;
-  result.T_gt_est = alignRigid(est_positions, gt_positions);
+  result.T_gt_est = T_gt_est;
   std::vector<double> errors;
-  errors.reserve(pairs.size());
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    errors.push_back((gt_positions[k] - result.T_gt_est * est_positions[k]).norm());
-  }
+  errors.reserve(positions.gt.size());
+  for (size_t k = 0; k < positions.gt.size(); ++k)
+    errors.push_back((positions.gt[k] - T_gt_est * positions.est[k]).norm());
   result.translation = summarize(std::move(errors));
   return result;
+}
+
+}  // namespace
+
+AteResult computeAte(const Trajectory& gt, const Trajectory& est, double max_dt) {
+  const AssociatedPositions positions = associatedPositions(gt, est, max_dt);
+  return ateWith(positions, alignRigid(positions.est, positions.gt));
+}
+
+AteResult computeAteInFrame(const Trajectory& gt, const Trajectory& est,
+                            const Eigen::Isometry3d& T_gt_est, double max_dt) {
+  return ateWith(associatedPositions(gt, est, max_dt), T_gt_est);
 }
 
 RpeResult computeRpeFrames(const Trajectory& gt, const Trajectory& est, int delta_frames,

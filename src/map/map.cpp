@@ -1,6 +1,7 @@
 #include "ply_slam/map/map.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace ply_slam {
 
@@ -9,6 +10,20 @@ std::shared_ptr<KeyFrame> Map::addKeyFrame(std::shared_ptr<KeyFrame> keyframe) {
   keyframe->id = next_keyframe_id_++;
   keyframes_.push_back(keyframe);
   return keyframe;
+}
+
+void Map::adopt(std::vector<std::shared_ptr<KeyFrame>> keyframes,
+                std::vector<std::shared_ptr<MapPoint>> points,
+                std::vector<std::shared_ptr<MapLine>> lines) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!keyframes_.empty() || !points_.empty() || !lines_.empty())
+    throw std::logic_error("Map::adopt: the map is not empty");
+  for (const auto& kf : keyframes) next_keyframe_id_ = std::max(next_keyframe_id_, kf->id + 1);
+  for (const auto& p : points) next_point_id_ = std::max(next_point_id_, p->id + 1);
+  for (const auto& l : lines) next_line_id_ = std::max(next_line_id_, l->id + 1);
+  keyframes_ = std::move(keyframes);
+  points_ = std::move(points);
+  lines_ = std::move(lines);
 }
 
 std::shared_ptr<MapPoint> Map::createMapPoint(const Eigen::Vector3d& position,

@@ -1,5 +1,10 @@
 #include "ply_slam/mapping/loop_closer.h"
 
+#include <filesystem>
+
+#include "ply_slam/loop/vocabulary_file.h"
+#include "ply_slam/loop/vocabulary_path.h"
+
 namespace ply_slam {
 namespace {
 
@@ -17,6 +22,12 @@ LoopCloser::LoopCloser(LoopDetector detector, const SystemConfig& config,
       builder_(config.lines, config.camera, config.loop, config.dynamic.mask_dilation_px),
       corrector_(config.loop_correction, fuser, map),
       options_(config.loop_correction),
+      orb_file_(
+          std::filesystem::path(vocabularyPath(config.loop.orb_vocabulary, DescriptorKind::kOrb))
+              .filename()),
+      lbd_file_(
+          std::filesystem::path(vocabularyPath(config.loop.lbd_vocabulary, DescriptorKind::kLbd))
+              .filename()),
       map_(map) {}
 
 std::optional<LoopCorrection> LoopCloser::addKeyFrame(KeyFrame& keyframe,
@@ -76,6 +87,61 @@ KeyFrame* LoopCloser::keyFrame(long id) const {
   for (const auto& kf : map_.keyFrames())
     if (kf->id == id) return kf.get();
   return nullptr;
+}
+
+std::optional<KeyFramePlace> LoopCloser::place(const KeyFrame& keyframe) const {
+  const LoopKeyFrame* stored = nullptr;
+  try {
+    stored = &detector_.keyFrame(keyframe.id);
+  } catch (const std::out_of_range&) {
+    return std::nullopt;
+  }
+  KeyFramePlace place;
+  // The database's keypoints are the keyframe's in order, those on moving objects left out.
+  const auto& all = keyframe.features.undistorted;
+  place.used_keypoints.assign(all.size(), 0);
+  size_t next = 0;
+  for (size_t i = 0; i < all.size() && next < stored->keypoints.size(); ++i)
+    if (all[i] == stored->keypoints[next]) {
+      place.used_keypoints[i] = 1;
+      ++next;
+    }
+  place.lbd_descriptors = stored->lbd_descriptors.clone();
+  place.instances = stored->instances;
+  return place;
+}
+
+void LoopCloser::addLoadedKeyFrame(const KeyFrame& keyframe, const KeyFramePlace& place) {
+  LoopKeyFrame kf;
+  kf.id = keyframe.id;
+  kf.stamp = keyframe.stamp;
+  const FrameFeatures& f = keyframe.features;
+  kf.orb_descriptors = cv::Mat(0, f.descriptors.cols, f.descriptors.type());
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (i < place.used_keypoints.size() && !place.used_keypoints[i]) continue;
+    kf.keypoints.push_back(f.undistorted[i]);
+    kf.depth.push_back(f.depth[i]);
+    kf.orb_descriptors.push_back(f.descriptors.row(static_cast<int>(i)));
+  }
+  kf.lbd_descriptors = place.lbd_descriptors.clone();
+  kf.instances = place.instances;
+  detector_.addKeyFrame(std::move(kf));
+}
+
+namespace {
+
+MapVocabulary identify(const BinaryVocabulary& vocabulary, const std::string& file) {
+  return {file, VocabularyFile::checksum(vocabulary.data()), vocabulary.numWords()};
+}
+
+}  // namespace
+
+MapVocabulary LoopCloser::orbVocabulary() const {
+  return identify(detector_.orbVocabulary(), orb_file_);
+}
+
+MapVocabulary LoopCloser::lbdVocabulary() const {
+  return identify(detector_.lbdVocabulary(), lbd_file_);
 }
 
 }  // namespace ply_slam

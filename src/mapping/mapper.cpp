@@ -100,4 +100,31 @@ std::vector<long> Mapper::recognise(const cv::Mat& orb_descriptors, size_t max_r
   return loop_closer_->recognise(orb_descriptors, max_results);
 }
 
+std::map<long, KeyFramePlace> Mapper::places() const {
+  std::map<long, KeyFramePlace> places;
+  if (!loop_closer_) return places;
+  for (const auto& kf : map_.keyFrames())
+    if (auto place = loop_closer_->place(*kf)) places.emplace(kf->id, std::move(*place));
+  return places;
+}
+
+void Mapper::addLoadedKeyFrames(const std::map<long, KeyFramePlace>& places) {
+  if (!loop_closer_) return;
+  const auto keyframes = map_.keyFrames();
+  const KeyFramePlace none;  // a keyframe without a record: every keypoint, no lines
+  for (const auto& kf : keyframes) {
+    const auto it = places.find(kf->id);
+    loop_closer_->addLoadedKeyFrame(*kf, it != places.end() ? it->second : none);
+  }
+  for (const auto& kf : keyframes) loop_closer_->syncCovisibility(*kf);
+}
+
+MapVocabulary Mapper::orbVocabulary() const {
+  return loop_closer_ ? loop_closer_->orbVocabulary() : MapVocabulary{};
+}
+
+MapVocabulary Mapper::lbdVocabulary() const {
+  return loop_closer_ ? loop_closer_->lbdVocabulary() : MapVocabulary{};
+}
+
 }  // namespace ply_slam

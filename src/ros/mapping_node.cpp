@@ -23,6 +23,7 @@
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/dense_map_messages.h"
 #include "ply_slam/ros/grid_map_message.h"
+#include "ply_slam/system/system.h"
 
 namespace ply_slam {
 namespace {
@@ -136,6 +137,8 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   save_trajectory_srv_ =
       pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
   save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
+  tracker_save_map_client_ = nh_.serviceClient<SaveToPath>(
+      pnh_.param<std::string>("tracker_save_map_service", "tracking_node/save_map"));
   ROS_INFO_STREAM("mapping_node: keyframes from "
                   << keyframe_sub_.getTopic() << ", poses from " << pose_sub_.getTopic()
                   << ", map updates from " << update_sub_.getTopic() << "; tf "
@@ -492,11 +495,23 @@ void MappingNode::publishGrid(const ros::TimerEvent&) {
   grid_pub_.publish(toGridMsg(*grid, T_frame_floor, header));
 }
 
+void MappingNode::saveTrackerMap(const std::string& folder) {
+  SaveToPath save;
+  save.request.path = folder;
+  if (!tracker_save_map_client_.call(save))
+    throw std::runtime_error(std::string(System::kMapFileName) + " not written: " +
+                             tracker_save_map_client_.getService() + " did not answer");
+  if (!save.response.success)
+    throw std::runtime_error(std::string(System::kMapFileName) +
+                             " not written: " + save.response.message);
+}
+
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
   // Every part is tried; the answer names each file that could not be written.
   FileWrites files;
   files.attempt([&] { store_.save(request.path); });
+  files.attempt([&] { saveTrackerMap(request.path); });
   const Trajectory trajectory = cameraTrajectory();
   const std::filesystem::path folder(request.path);
   files.attempt(

@@ -7,6 +7,9 @@
 #include <std_msgs/String.h>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <future>
 #include <sstream>
 
 #include "ply_slam/common/statistics.h"
@@ -38,6 +41,12 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   const int sync_queue = std::max(1, pnh_.param("sync_queue_size", 10));
   sync_slop_ = pnh_.param("sync_slop", 0.02);
   flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
+  map_folder_ = pnh_.param<std::string>("map", "");
+  localisation_only_ = pnh_.param("localisation_only", true);
+  // Said at the start, not at the first frame (the system is made then, from camera_info).
+  const std::filesystem::path map_file = std::filesystem::path(map_folder_) / System::kMapFileName;
+  if (!map_folder_.empty() && !std::filesystem::is_regular_file(map_file))
+    throw std::runtime_error("~map: no map file " + map_file.string());
 
   if (!config_.segmentation.model_path.empty()) {
     // Live mode (DESIGN.md): the network runs beside tracking on the newest frame; tracking
@@ -54,6 +63,7 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   map_update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 100);
   snapshot_pub_ = pnh_.advertise<MapSnapshotMsg>("map_snapshot", 2);
   resend_srv_ = pnh_.advertiseService("resend_map", &TrackingNode::onResendMap, this);
+  save_map_srv_ = pnh_.advertiseService("save_map", &TrackingNode::onSaveMap, this);
   stats_pub_ = pnh_.advertise<std_msgs::String>("stats", 1, true);
   tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
@@ -84,7 +94,11 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
                   << config_.source_path << ", rgb " << rgb_sub_.getTopic() << ", depth "
                   << depth_sub_.getTopic() << ", camera_info " << info_sub_.getTopic()
                   << (use_camera_info_ ? "" : " (ignored)") << ", sync queue " << sync_queue
-                  << " slop " << sync_slop_ << " s");
+                  << " slop " << sync_slop_ << " s"
+                  << (map_folder_.empty()
+                          ? std::string()
+                          : ", map " + map_folder_ +
+                                (localisation_only_ ? " (localisation only)" : " (extended)")));
 }
 
 TrackingNode::~TrackingNode() {
@@ -167,6 +181,41 @@ bool TrackingNode::onResendMap(std_srvs::Trigger::Request&, std_srvs::Trigger::R
   return true;
 }
 
+// The map file into request.path (a folder), written by the worker between two frames.
+bool TrackingNode::onSaveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
+  auto answer = std::make_shared<std::promise<std::pair<bool, std::string>>>();
+  std::future<std::pair<bool, std::string>> answered = answer->get_future();
+  const std::string folder = request.path;
+  auto save = [this, folder, answer] {
+    try {
+      if (!system_) throw std::runtime_error("no map yet: no frame has arrived");
+      system_->saveMap(folder);
+      answer->set_value(
+          {true, std::to_string(system_->map().numKeyFrames()) + " keyframes, " +
+                     std::to_string(system_->map().numMapPoints()) + " points to " +
+                     (std::filesystem::path(folder) / System::kMapFileName).string()});
+    } catch (const std::exception& e) {
+      answer->set_value({false, e.what()});
+    }
+  };
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    queue_.push_front({nullptr, nullptr, save});
+  }
+  queue_cv_.notify_one();
+  if (answered.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
+    response.success = false;
+    response.message = "the tracker did not save the map within 60 s";
+  } else {
+    std::tie(response.success, response.message) = answered.get();
+  }
+  if (response.success)
+    ROS_INFO_STREAM("save_map: " << response.message);
+  else
+    ROS_WARN_STREAM("save_map: " << response.message);
+  return true;
+}
+
 // Frames wait here for the worker; when it falls this far behind the oldest frame goes (a live
 // camera cannot wait).
 void TrackingNode::enqueue(Job job) {
@@ -196,7 +245,9 @@ void TrackingNode::work() {
       queue_.pop_front();
     }
     try {
-      if (job.rgb)
+      if (job.task)
+        job.task();
+      else if (job.rgb)
         track(*job.rgb, *job.depth);
       else
         publishSnapshot();
@@ -226,6 +277,22 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
   }
   if (!segmenter_) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
   system_ = std::make_unique<System>(config);
+  if (!map_folder_.empty()) loadMap();
+}
+
+void TrackingNode::loadMap() {
+  try {
+    system_->loadMap(map_folder_, localisation_only_);
+  } catch (const std::exception& e) {
+    map_failed_ = true;
+    ROS_FATAL_STREAM("tracking_node: " << e.what());
+    ros::shutdown();
+    return;
+  }
+  ROS_INFO_STREAM("tracking_node: map "
+                  << map_folder_ << " loaded: " << system_->map().numKeyFrames() << " keyframes, "
+                  << system_->map().numMapPoints() << " points; relocalising (no pose until then)");
+  publishSnapshot();  // mapping_node shows and keeps the loaded map
 }
 
 void TrackingNode::track(const Image& rgb, const Image& depth) {
@@ -235,7 +302,9 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
     info = camera_info_;
   }
   const RgbdImages images = decoder_.decode(rgb, depth, info.get());
+  if (map_failed_) return;
   if (!system_) startSystem(info.get());
+  if (map_failed_) return;
   std::vector<Instance> instances;
   if (segmenter_) {
     segmenter_->submit(images);

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <future>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/map/map_file_reader.h"
+#include "ply_slam/map/map_file_writer.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
@@ -202,6 +205,44 @@ std::vector<KeyFramePacket> System::sparseKeyFramePackets() const {
   for (const auto& kf : map_.keyFrames())
     packets.push_back(makeSparseKeyFramePacket(*kf, config_.camera));
   return packets;
+}
+
+MapFileSetup System::mapFileSetup() const {
+  MapFileSetup setup;
+  setup.camera.fx = config_.camera.fx;
+  setup.camera.fy = config_.camera.fy;
+  setup.camera.cx = config_.camera.cx;
+  setup.camera.cy = config_.camera.cy;
+  setup.camera.width = config_.camera.width;
+  setup.camera.height = config_.camera.height;
+  setup.orb_levels = config_.orb.num_levels;
+  setup.orb_scale_factor = config_.orb.scale_factor;
+  setup.orb_vocabulary = mapper_.orbVocabulary();
+  setup.lbd_vocabulary = mapper_.lbdVocabulary();
+  return setup;
+}
+
+void System::saveMap(const std::string& folder) const {
+  std::filesystem::create_directories(folder);
+  MapFileWriter::write((std::filesystem::path(folder) / kMapFileName).string(), mapFileSetup(),
+                       map_, mapper_.places());
+}
+
+void System::loadMap(const std::string& folder, bool localisation_only) {
+  if (next_frame_id_ != 0 || map_.numKeyFrames() != 0)
+    throw std::logic_error("System::loadMap: a map is loaded before the first frame");
+  // Read and checked whole before anything changes: a bad file leaves the system as it was.
+  MapFileContents loaded =
+      MapFileReader::read((std::filesystem::path(folder) / kMapFileName).string(), mapFileSetup(),
+                          &extractor_.scales());
+  long last_frame = -1;
+  for (const auto& kf : loaded.keyframes) last_frame = std::max(last_frame, kf->frame_id);
+  map_.adopt(std::move(loaded.keyframes), std::move(loaded.points), std::move(loaded.lines));
+  mapper_.addLoadedKeyFrames(loaded.places);
+  tracker_.startLost();
+  tracker_.setLocalisationOnly(localisation_only);
+  // Keyframes remember the frame they were made from; new frames must not repeat those ids.
+  next_frame_id_ = last_frame + 1;
 }
 
 Trajectory System::keyFrameTrajectory() const {

@@ -27,7 +27,7 @@ constexpr int kExitUsage = 2;
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 const char* const kUsage =
-    "usage: ply_slam_eval ate GT EST [--max-dt S] [--json] [--plot PNG]\n"
+    "usage: ply_slam_eval ate GT EST [--max-dt S] [--json] [--plot PNG] [--align-with REF]\n"
     "       ply_slam_eval rpe GT EST [--delta N | --delta-seconds S] [--max-dt S] [--json]\n"
     "\n"
     "GT and EST are TUM trajectory files ('stamp tx ty tz qx qy qz qw' per line).\n"
@@ -37,6 +37,8 @@ const char* const kUsage =
     "  --max-dt S       largest stamp difference for associating poses (default 0.02 s)\n"
     "  --json           print one JSON object instead of text\n"
     "  --plot PNG       (ate) also write a top/side view of gt and the aligned estimate\n"
+    "  --align-with REF (ate) align EST with the alignment fitted to REF, an estimate in the\n"
+    "                   same frame (the run that made a map EST was localised in), not its own\n"
     "A stamp given twice in a file, a non-finite number or coordinates too large to square\n"
     "are errors naming the file.\n"
     "Exit codes: 0 ok, 1 unreadable/malformed data or too few pairs, 2 usage error.\n";
@@ -52,6 +54,7 @@ struct Options {
   double max_dt = 0.02;
   bool json = false;
   std::string plot_path;
+  std::string align_with;  // ate: the estimate whose fitted alignment EST is judged with
   std::optional<int> delta_frames;
   std::optional<double> delta_seconds;
 };
@@ -95,6 +98,8 @@ Options parseArguments(const std::vector<std::string>& args) {
       options.max_dt = parseNumber(arg, value(), true);
     } else if (arg == "--plot" && !is_rpe) {
       options.plot_path = value();
+    } else if (arg == "--align-with" && !is_rpe) {
+      options.align_with = value();
     } else if (arg == "--delta" && is_rpe) {
       options.delta_frames = parseFrameCount(arg, value());
     } else if (arg == "--delta-seconds" && is_rpe) {
@@ -156,7 +161,16 @@ void requireFinite(const ply_slam::ErrorStats& s, const char* what) {
 
 int runAte(const Options& options, const ply_slam::Trajectory& gt,
            const ply_slam::Trajectory& est) {
-  const ply_slam::AteResult ate = ply_slam::computeAte(gt, est, options.max_dt);
+  // A run in a loaded map is judged in that map's frame: aligned as the run that made it.
+  const ply_slam::AteResult ate =
+      options.align_with.empty()
+          ? ply_slam::computeAte(gt, est, options.max_dt)
+          : ply_slam::computeAteInFrame(
+                gt, est,
+                ply_slam::computeAte(gt, readNonEmpty(options.align_with, "reference"),
+                                     options.max_dt)
+                    .T_gt_est,
+                options.max_dt);
   const ply_slam::ErrorStats& s = ate.translation;
   requireFinite(s, "the ATE");
   if (options.json) {
@@ -166,7 +180,8 @@ int runAte(const Options& options, const ply_slam::Trajectory& gt,
   } else {
     const Eigen::Vector3d t = ate.T_gt_est.translation();
     const double angle_deg = Eigen::AngleAxisd(ate.T_gt_est.linear()).angle() * kDegreesPerRadian;
-    std::cout << "ATE (TUM, rigid alignment without scale)\n"
+    std::cout << "ATE (TUM, rigid alignment without scale"
+              << (options.align_with.empty() ? "" : ", fitted to " + options.align_with) << ")\n"
               << "  ground truth  " << options.gt_path << " (" << gt.size() << " poses)\n"
               << "  estimate      " << options.est_path << " (" << est.size() << " poses)\n"
               << "  pairs         " << s.count << " (max_dt " << options.max_dt << " s)\n"

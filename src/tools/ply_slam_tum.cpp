@@ -59,13 +59,18 @@ struct Options : RunArguments {
   bool live = false;               // frames at their own pace, segmentation beside
   long save_images = 0;            // every N frames a tracking image; 0 = none
   std::string ground_truth_masks;  // walker masks: feature classification, ghost count
+  std::string save_map;            // folder the map is saved into at the end; "" = none
+  std::string map;                 // folder of a saved map to localise in; "" = a new map
+  bool localisation_only = true;   // with --map: add no keyframes
+  bool localisation_only_given = false;
 };
 
 const char* const kUsage =
     "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
     " [--segmenter none|masks|yolo] [--model ONNX --input WxH]"
     " [--dynamic off|geometric|semantic|full] [--live] [--save-images N] [--max-frames N]"
-    " [--no-lines] [--no-loop] [--ground-truth-masks DIR]\n"
+    " [--no-lines] [--no-loop] [--ground-truth-masks DIR] [--save-map DIR]"
+    " [--map DIR [--localisation-only true|false]]\n"
     "  --no-lines: points only, whatever lines.enabled says\n"
     "  --no-loop: no place recognition nor loop closure, whatever loop.enabled says\n"
     "  --dynamic: how dynamic features are rejected (default: the config's dynamic.mode)\n"
@@ -77,6 +82,11 @@ const char* const kUsage =
     " --model/--input (only with --segmenter yolo)\n"
     "  --ground-truth-masks DIR: count dense points and octree voxels from the people of\n"
     "    DIR/masks (default: the sequence's own masks/ when it has them)\n"
+    "  --save-map DIR: write the map at the end into DIR/map.plymap (a map --map loads)\n"
+    "  --map DIR: start in the map saved in DIR: relocalise in it, then track against it;\n"
+    "    poses are in its frame, frames before the relocalisation are lost\n"
+    "  --localisation-only true|false: with --map, add no keyframes (default true) or extend\n"
+    "    the map\n"
     "Exit codes: 0 ok; 1 a frame or an output could not be read or written (what could be\n"
     "written is); 2 usage error; 3 every output written but the ground truth could not be\n"
     "evaluated (summary.json evaluation_error says why).\n";
@@ -104,6 +114,15 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.dynamic = value;
   } else if (arg == "--save-images") {
     o.save_images = parseCount(arg, value);
+  } else if (arg == "--save-map") {
+    o.save_map = value;
+  } else if (arg == "--map") {
+    o.map = value;
+  } else if (arg == "--localisation-only") {
+    if (value != "true" && value != "false")
+      usage("--localisation-only takes true or false, got '" + value + "'");
+    o.localisation_only = value == "true";
+    o.localisation_only_given = true;
   }
 }
 
@@ -115,6 +134,7 @@ void checkOptions(const Options& o) {
       usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
     }
   if (o.live && o.segmentation.kind == "none") usage("--live needs a segmenter");
+  if (o.localisation_only_given && o.map.empty()) usage("--localisation-only needs --map");
   o.require();
 }
 
@@ -123,9 +143,19 @@ Options parse(int argc, char** argv) {
   CommandLine line;
   line.usage_text = kUsage;
   line.flags = {"--no-lines", "--live", "--no-loop"};
-  line.options = {"--sequence",   "--config",     "--out",     "--segmenter",
-                  "--model",      "--input",      "--dynamic", "--ground-truth-masks",
-                  "--max-frames", "--save-images"};
+  line.options = {"--sequence",
+                  "--config",
+                  "--out",
+                  "--segmenter",
+                  "--model",
+                  "--input",
+                  "--dynamic",
+                  "--ground-truth-masks",
+                  "--max-frames",
+                  "--save-images",
+                  "--save-map",
+                  "--map",
+                  "--localisation-only"};
   line.on_flag = [&](const std::string& flag) {
     (flag == "--live" ? o.live : flag == "--no-loop" ? o.no_loop : o.no_lines) = true;
   };
@@ -358,8 +388,10 @@ struct RunCounts {
   double line_inliers = 0.0;
   size_t dynamic_features = 0;
   long frames = 0, lost = 0, keyframes_created = 0, keyframes_culled = 0, points_culled = 0;
+  long first_tracked = -1;  // index of the first tracked frame (in a loaded map: relocalised)
 
   void add(const FrameResult& r) {
+    if (first_tracked < 0 && r.tracking.state == TrackingState::kOk) first_tracked = frames;
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     keyframes_created += r.tracking.new_keyframe != nullptr;
@@ -459,6 +491,28 @@ Json classificationJson(const FeatureClassification& classification) {
           {"static_dropped_share", rounded(classification.staticDroppedShare())}};
 }
 
+// Starts the system in the map saved in --map; what summary.json says of it.
+Json loadSavedMap(System& system, const Options& options) {
+  Stopwatch watch;
+  system.loadMap(options.map, options.localisation_only);
+  return {{"loaded", options.map},
+          {"load_ms", rounded(watch.elapsedMs())},
+          {"localisation_only", options.localisation_only},
+          {"keyframes_loaded", system.map().numKeyFrames()},
+          {"map_points_loaded", system.map().numMapPoints()},
+          {"map_lines_loaded", system.map().numMapLines()}};
+}
+
+// --save-map: the map file, its size and the time it took; an error goes with the others.
+Json saveMap(const System& system, const std::string& folder, FileWrites& outputs) {
+  Stopwatch watch;
+  if (!outputs.attempt([&] { system.saveMap(folder); })) return nullptr;
+  const fs::path file = fs::path(folder) / System::kMapFileName;
+  return {{"file", file.string()},
+          {"bytes", fs::file_size(file)},
+          {"save_ms", rounded(watch.elapsedMs())}};
+}
+
 int run(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
@@ -485,6 +539,8 @@ int run(const Options& options) {
   FeatureClassification classification;
   if (options.save_images > 0) fs::create_directories(out / "images");
   System system(config);
+  Json map_json = Json::object();
+  if (!options.map.empty()) map_json = loadSavedMap(system, options);
   std::unique_ptr<DenseMappingWorker> dense;
   if (config.dense.enabled) dense = std::make_unique<DenseMappingWorker>(config.dense);
   FileWrites outputs;
@@ -552,7 +608,11 @@ int run(const Options& options) {
     writeTumTrajectory((out / "KeyFrameTrajectory.txt").string(), system.keyFrameTrajectory());
   });
 
+  if (!options.save_map.empty()) map_json["saved"] = saveMap(system, options.save_map, outputs);
   Json json = summaryJson(options, config, sequence, system, counts, trajectory.size());
+  // In a loaded map the frames before the first tracked one are those relocalisation took.
+  if (!options.map.empty()) map_json["first_tracked_frame"] = counts.first_tracked;
+  if (!map_json.empty()) json["map"] = map_json;
   if (live)
     json["live"] = {{"segmented_frames", live->segmentedFrames()},
                     {"mask_age_mean_s", rounded(live->meanAgeSeconds())}};

@@ -90,13 +90,15 @@ TrackingResult Tracker::track(Frame& frame) {
            !farFromPrediction(frame);
     }
     if (ok) {
-      // A velocity needs two consecutive tracked frames close enough in time.
-      const double dt = frame.stamp - last_frame_->stamp;
+      // A velocity needs two consecutive tracked frames close enough in time (none before the
+      // first relocalisation in a loaded map).
+      const double dt = last_frame_ ? frame.stamp - last_frame_->stamp : 0.0;
       has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= kMaxVelocityGap;
       if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
-      fuseLineFits(frame);
+      // Localising in a loaded map leaves its geometry as it was saved.
+      if (!localisation_only_) fuseLineFits(frame);
       result.inliers = inliers;
       result.line_inliers = frame.numLineMatches();
       if (needKeyFrame(frame, inliers)) {
@@ -113,6 +115,13 @@ TrackingResult Tracker::track(Frame& frame) {
   result.T_cw = frame.T_cw;
   if (state_ == TrackingState::kOk) last_frame_ = std::make_unique<Frame>(frame);
   return result;
+}
+
+void Tracker::startLost() {
+  state_ = TrackingState::kLost;
+  has_velocity_ = false;
+  last_frame_.reset();
+  last_keyframe_.reset();
 }
 
 void Tracker::applyCorrection(const Eigen::Isometry3d& world_correction) {
@@ -471,6 +480,7 @@ void Tracker::fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d&
 }
 
 bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
+  if (localisation_only_) return false;
   if (!last_keyframe_) return true;
   const auto& t = config_.tracking;
   if (frame.id - last_keyframe_->frame_id >= t.keyframe_max_frames) return true;

@@ -32,6 +32,10 @@ Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
 // Absolute trajectory error, TUM definition: associate stamps within max_dt, align, RMSE etc.
 // Throws std::runtime_error when fewer than 3 pairs associate.
 AteResult computeAte(const Trajectory& gt, const Trajectory& est, double max_dt = 0.02);
+// The same with the alignment given, not fitted: a run in a loaded map is judged in that map's
+// frame, with the alignment of the run that made the map (a free fit would hide an offset).
+AteResult computeAteInFrame(const Trajectory& gt, const Trajectory& est,
+                            const Eigen::Isometry3d& T_gt_est, double max_dt = 0.02);
 
 // Relative pose error, TUM definition, over pairs of associated poses `delta_frames` apart
 // (in the estimate's order) or `delta_seconds` apart.

@@ -46,10 +46,12 @@ struct FrameFeatures {
   // Indices of features within `radius` px of (u, v) with level in [min_level, max_level].
   std::vector<size_t> featuresInArea(double u, double v, double radius, int min_level,
                                      int max_level) const;
+  // The search grid over `undistorted` (extract and removeIf build it; a keyframe read from a
+  // map file needs it built).
+  void buildGrid();
 
  private:
   static constexpr int kCellSize = 16;
-  void buildGrid();
   int grid_cols_ = 0, grid_rows_ = 0;
   std::vector<std::vector<size_t>> grid_;
 };

@@ -17,6 +17,9 @@ class VocabularyFile {
   // Writes a temporary file beside `path` and renames it over `path`, so a failed or
   // interrupted save leaves no half file. Throws std::runtime_error naming the file.
   static void write(const std::string& path, const VocabularyData& data);
+  // The checksum the file of `data` ends with: what names a vocabulary's exact content (a map
+  // file records it and refuses another vocabulary).
+  static uint64_t checksum(const VocabularyData& data);
   // Throws std::runtime_error naming the file and the fault: missing or unreadable, truncated,
   // not a vocabulary (magic), another version, checksum mismatch, another descriptor kind, or
   // an inconsistent tree.

@@ -41,6 +41,13 @@ class Map {
   // first keyframe) or a keyframe not in the map.
   bool eraseKeyFrame(KeyFrame& keyframe, int min_point_observers);
 
+  // Takes a map read from a file (MapFileReader) as it is: ids, links, covisibility and spanning
+  // tree kept; the first keyframe is the tree's root. Later ids continue after the largest.
+  // Throws std::logic_error when this map is not empty.
+  void adopt(std::vector<std::shared_ptr<KeyFrame>> keyframes,
+             std::vector<std::shared_ptr<MapPoint>> points,
+             std::vector<std::shared_ptr<MapLine>> lines);
+
   std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;
   size_t numKeyFrames() const;

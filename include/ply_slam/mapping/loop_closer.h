@@ -7,6 +7,7 @@
 #include "ply_slam/common/config.h"
 #include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/loop/loop_key_frame_builder.h"
+#include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/loop_corrector.h"
 
 namespace ply_slam {
@@ -36,10 +37,18 @@ class LoopCloser {
     return detector_.recognise(orb_descriptors, max_results);
   }
   const LoopClosureCounts& counts() const { return counts_; }
-
- private:
+  // What the database keeps of a keyframe beyond its features (null: not in the database).
+  std::optional<KeyFramePlace> place(const KeyFrame& keyframe) const;
+  // A keyframe of a loaded map into the database, from its features and place (keyframes in id
+  // order; then syncCovisibility of each).
+  void addLoadedKeyFrame(const KeyFrame& keyframe, const KeyFramePlace& place);
   // The detector's covisibility of the keyframe and its neighbours, from the map's.
   void syncCovisibility(const KeyFrame& keyframe);
+  // The vocabularies, named by their files (loop.orb_vocabulary, loop.lbd_vocabulary).
+  MapVocabulary orbVocabulary() const;
+  MapVocabulary lbdVocabulary() const;
+
+ private:
   KeyFrame* keyFrame(long id) const;
   // Whether the loop's shift of the query is within the drift the tracker could have gathered
   // since the candidate (LoopCorrectionOptions).
@@ -49,6 +58,7 @@ class LoopCloser {
   LoopKeyFrameBuilder builder_;
   LoopCorrector corrector_;
   LoopCorrectionOptions options_;
+  std::string orb_file_, lbd_file_;  // the vocabularies' file names
   Map& map_;
   LoopClosureCounts counts_;
   long last_loop_keyframe_ = -1;

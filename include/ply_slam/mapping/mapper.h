@@ -8,6 +8,7 @@
 #include "ply_slam/common/config.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/key_frame_culler.h"
 #include "ply_slam/mapping/landmark_fuser.h"
 #include "ply_slam/mapping/local_bundle_adjuster.h"
@@ -49,6 +50,14 @@ class Mapper {
   // covisible keyframes) and the landmarks they see.
   MapUpdate localUpdate(const KeyFrame& keyframe) const;
   bool recognisesPlaces() const { return loop_closer_ != nullptr; }
+  // What place recognition keeps of each keyframe, for a map file (empty without loop.enabled).
+  std::map<long, KeyFramePlace> places() const;
+  // A loaded map's keyframes (already in the map) into the place database, from their
+  // features and `places`; nothing without loop.enabled.
+  void addLoadedKeyFrames(const std::map<long, KeyFramePlace>& places);
+  // The vocabularies place recognition uses (empty ones without loop.enabled).
+  MapVocabulary orbVocabulary() const;
+  MapVocabulary lbdVocabulary() const;
   // Null without loop.enabled.
   const LoopClosureCounts* loopCounts() const {
     return loop_closer_ ? &loop_closer_->counts() : nullptr;

@@ -55,6 +55,8 @@ class MappingNode {
   void noteCallbackMs(double ms);
   bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
+  // Asks the tracker for the map file in `folder`; throws std::runtime_error saying why not.
+  void saveTrackerMap(const std::string& folder);
   void publishMap(const ros::Time& stamp);
   void publishDense(const ros::TimerEvent& event);
   void publishGrid(const ros::TimerEvent& event);
@@ -85,6 +87,9 @@ class MappingNode {
 
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
   ros::ServiceClient resend_client_;
+  // tracking_node's ~save_map: the map file that loads again comes from the tracker, which
+  // holds the whole map (descriptors, covisibility, place data); MapStore holds less.
+  ros::ServiceClient tracker_save_map_client_;
   ros::WallTimer startup_timer_;
   // Numbering of the tracker's keyframe and map-update messages; missed() counts what the map
   // lacks until a snapshot restores it.

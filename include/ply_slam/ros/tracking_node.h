@@ -5,6 +5,7 @@
 #include <message_filters/synchronizer.h>
 #include <nav_msgs/Path.h>
 #include <ply_slam/MapUpdateMsg.h>
+#include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -13,6 +14,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -28,7 +30,8 @@ namespace ply_slam {
 // camera_info) -> System::process (tracking and, in line, the mapping side) -> pose, path,
 // images, keyframes and what the mapping side changed (~map_update, for mapping_node). Frames are
 // tracked on a worker thread in arrival order so the subscribers never block; bad input is
-// counted, logged throttled and skipped.
+// counted, logged throttled and skipped. With ~map it starts in a saved map (System::loadMap);
+// ~save_map writes the map file (System::saveMap).
 class TrackingNode {
  public:
   TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
@@ -39,6 +42,7 @@ class TrackingNode {
   using SyncPolicy = message_filters::sync_policies::ApproximateTime<Image, Image>;
   struct Job {
     sensor_msgs::ImageConstPtr rgb, depth;  // null: send the whole map (~resend_map)
+    std::function<void()> task;             // set: run this between two frames instead
   };
 
   void onImages(const sensor_msgs::ImageConstPtr& rgb, const sensor_msgs::ImageConstPtr& depth);
@@ -47,11 +51,14 @@ class TrackingNode {
   void flushStalledPair();
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
   bool onResendMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool onSaveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   void enqueue(Job job);
   void publishSnapshot();
   void work();
   void track(const Image& rgb, const Image& depth);
   void startSystem(const sensor_msgs::CameraInfo* info);
+  // ~map: the saved map into the new system; a map that cannot be loaded stops the node.
+  void loadMap();
   void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
                const FrameResult& result);
   void publishStats();
@@ -62,6 +69,9 @@ class TrackingNode {
   bool publish_images_ = true;
   std::string world_frame_;
   size_t frame_queue_size_ = 100;
+  std::string map_folder_;  // ~map: a saved map to localise in; "" = a new map
+  bool localisation_only_ = true;
+  bool map_failed_ = false;  // ~map could not be loaded: no frame is tracked
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
   std::unique_ptr<LiveSegmenter> segmenter_;  // null: no model configured
@@ -72,7 +82,7 @@ class TrackingNode {
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
   ros::Subscriber info_sub_;
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
-  ros::ServiceServer resend_srv_;
+  ros::ServiceServer resend_srv_, save_map_srv_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();

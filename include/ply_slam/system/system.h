@@ -15,6 +15,7 @@
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/semantic/instance.h"
 #include "ply_slam/semantic/instance_memory.h"
@@ -88,6 +89,22 @@ class System {
   // Loop closure's counts; null without loop.enabled.
   const LoopClosureCounts* loopCounts() const { return mapper_.loopCounts(); }
   const Map& map() const { return map_; }
+
+  // The map file a saved map is in, inside the folder saveMap and loadMap take.
+  static constexpr const char* kMapFileName = "map.plymap";
+  // Writes the map (keyframes with features, poses, landmarks, covisibility, spanning tree,
+  // place-recognition data) into folder/map.plymap (MapFileWriter); the folder is created.
+  // Throws std::runtime_error naming the file.
+  void saveMap(const std::string& folder) const;
+  // Before the first frame: takes the map saved in `folder`. Tracking starts lost and
+  // relocalises in it (place-recognition candidates and PnP), so no pose is reported before;
+  // frame and keyframe ids continue after the map's. `localisation_only`: no keyframes nor
+  // landmarks are added; false: the map is extended. Throws std::runtime_error naming the file
+  // and the fault (missing, truncated, corrupted, another version, camera, pyramid or
+  // vocabulary), the system unchanged; std::logic_error after the first frame.
+  void loadMap(const std::string& folder, bool localisation_only = true);
+  // The camera, pyramid and vocabularies a map file made by this system records.
+  MapFileSetup mapFileSetup() const;
   const SystemConfig& config() const { return config_; }
 
  private:

@@ -43,6 +43,12 @@ class Tracker {
   // current keyframe. The last frame moves the same, so the next prediction lands in the
   // corrected map.
   void applyCorrection(const Eigen::Isometry3d& world_correction);
+  // A map loaded from a file: tracking starts lost, so that the first pose comes from
+  // relocalisation in that map (never a new map at the identity).
+  void startLost();
+  // Localisation in a loaded map: track against it, add no keyframes (and so no landmarks) and
+  // leave its geometry as it was saved.
+  void setLocalisationOnly(bool only) { localisation_only_ = only; }
   TrackingState state() const { return state_; }
   // The camera's current velocity, null when unknown (start, after a loss).
   const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
@@ -93,6 +99,7 @@ class Tracker {
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
   PlaceCandidates place_candidates_;
+  bool localisation_only_ = false;
 };
 
 }  // namespace ply_slam

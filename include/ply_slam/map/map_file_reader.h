@@ -1,0 +1,21 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ply_slam/map/map_file_contents.h"
+
+namespace ply_slam {
+
+// Reads a map file (map_file_format.h) for a system set up as `expected`.
+class MapFileReader {
+ public:
+  // `scales`: the ORB pyramid's scale per level (the extractor's; outlives the keyframes).
+  // Throws std::runtime_error naming the file and the fault: missing or unreadable, not a map
+  // file, another format version, truncated, checksum mismatch (corrupted), made with another
+  // camera, ORB pyramid or vocabulary (both named), or inconsistent content.
+  static MapFileContents read(const std::string& path, const MapFileSetup& expected,
+                              const std::vector<double>* scales);
+};
+
+}  // namespace ply_slam
