@@ -441,6 +441,8 @@ int run(const Options& o) {
   // The system under the evaluation only tracks: its own loop closure would move the map and
   // link the very keyframes whose recognition is measured.
   config.loop.enabled = false;
+  if (o.segmentation.kind == "none")
+    config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
   const TumSequence sequence(o.sequence);
   if (!sequence.hasGroundTruth())
     throw std::runtime_error(o.sequence + ": no groundtruth.txt, true loops cannot be defined");
