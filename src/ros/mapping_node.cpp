@@ -19,6 +19,7 @@
 #include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/map/world_in_map_file.h"
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/dense_map_messages.h"
@@ -84,6 +85,10 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
         toTransformMsg(T, ros::Time::now(), map_frame_, world_frame_));
     T_map_world_ = T;
   }
+  // A saved map to localise in: its map frame is the one it was saved in, not where odometry
+  // starts today. Until the tracker has relocalised no pose arrives, so no map -> odom either.
+  const std::string map_folder = pnh_.param<std::string>("map", "");
+  if (!map_folder.empty()) placeWorldAsSaved(map_folder);
 
   points_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("map_points", 1, true);
   lines_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("map_lines", 1, true);
@@ -329,6 +334,21 @@ void MappingNode::onPose(const geometry_msgs::PoseStampedConstPtr& msg) {
   broadcastTf(msg->header.stamp, T_world_camera);
 }
 
+void MappingNode::placeWorldAsSaved(const std::string& folder) {
+  const std::string path = (std::filesystem::path(folder) / WorldInMapFile::kName).string();
+  const std::optional<Eigen::Isometry3d> saved = WorldInMapFile::read(path);
+  if (!saved) {
+    ROS_INFO_STREAM(path << " does not exist (a map saved offline): its world is placed as "
+                            "without a map");
+    return;
+  }
+  T_map_world_ = *saved;
+  if (world_frame_ != map_frame_)
+    static_broadcaster_.sendTransform(
+        toTransformMsg(*T_map_world_, ros::Time::now(), map_frame_, world_frame_));
+  ROS_INFO_STREAM("the map's world placed in " << map_frame_ << " as saved in " << path);
+}
+
 // Without odometry the camera hangs from the world frame. With it (a robot), `map` starts where
 // odometry starts: T_map_world is the camera's pose in odom at the first tracked frame (the
 // robot's camera mounting comes in through its tf tree), and map -> odom absorbs the drift.
@@ -512,6 +532,11 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
   FileWrites files;
   files.attempt([&] { store_.save(request.path); });
   files.attempt([&] { saveTrackerMap(request.path); });
+  if (T_map_world_)
+    files.attempt([&] {
+      WorldInMapFile::write((std::filesystem::path(request.path) / WorldInMapFile::kName).string(),
+                            *T_map_world_);
+    });
   const Trajectory trajectory = cameraTrajectory();
   const std::filesystem::path folder(request.path);
   files.attempt(

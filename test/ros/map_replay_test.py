@@ -3,7 +3,11 @@
 tracking_node through tum_bag.launch map:=DIR, the rest of the sequence played as a bag. Checks:
 every frame tracked (relocalised at once, as offline), the ATE in the saved map's frame (aligned
 as the run that made the map) within the allowed factor of ply_slam_tum --map on the same
-frames, and the map file that mapping_node's save_map gets from the tracker loads again."""
+frames, and the map file that mapping_node's save_map gets from the tracker loads again. With
+odometry (an odom frame from which this test's static transform says the camera never moved):
+map -> odom in the saved map's frame (its world_in_map.txt, written here as a robot would have),
+and save_map writes that placement again."""
+import math
 import json
 import os
 import shutil
@@ -12,8 +16,11 @@ import subprocess
 import sys
 import unittest
 
+import numpy as np
 import rospy
 import rostest
+import tf2_ros
+from geometry_msgs.msg import PoseStamped, TransformStamped
 
 import ros_test_support as support
 
@@ -43,6 +50,45 @@ def later_part(sequence, first, folder):
     return len(rows) - first
 
 
+# Where a robot's mapping run put the SLAM world in its map frame: 1 m, 2 m, 0.5 m, 0.5 rad yaw.
+SAVED_PLACE = (1.0, 2.0, 0.5, 0.0, 0.0, math.sin(0.25), math.cos(0.25))
+CAMERA_FRAME = "openni_rgb_optical_frame"  # tum_bag.launch's for TUM bags
+
+
+def matrix(translation, quaternion):
+    x, y, z, w = quaternion
+    T = np.eye(4)
+    T[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                 [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                 [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+    T[:3, 3] = translation
+    return T
+
+
+def write_world_in_map(folder):
+    with open(os.path.join(folder, "world_in_map.txt"), "w") as f:
+        f.write("# the SLAM world in the map frame: x y z qx qy qz qw\n")
+        f.write(" ".join("%.17g" % v for v in SAVED_PLACE) + "\n")
+
+
+def read_world_in_map(folder):
+    with open(os.path.join(folder, "world_in_map.txt")) as f:
+        rows = [line for line in f if line.strip() and not line.startswith("#")]
+    return [float(v) for v in rows[0].split()]
+
+
+def odometry_that_never_moves():
+    """odom -> camera fixed: the map -> odom the mapper sends then carries the camera's motion."""
+    broadcaster = tf2_ros.StaticTransformBroadcaster()
+    t = TransformStamped()
+    t.header.stamp = rospy.Time.now()
+    t.header.frame_id = "odom"
+    t.child_frame_id = CAMERA_FRAME
+    t.transform.rotation.w = 1.0
+    broadcaster.sendTransform(t)
+    return broadcaster
+
+
 class MapReplay(unittest.TestCase):
     def test_localises_in_a_saved_map(self):
         sequence = support.shared_path(rospy.get_param("~sequence"))
@@ -59,13 +105,20 @@ class MapReplay(unittest.TestCase):
         run_tum("--sequence", part, "--out", os.path.join(work, "offline"), "--map", saved)
         offline = ate_in_map(sequence, os.path.join(work, "offline", "CameraTrajectory.txt"),
                              mapping)
+        write_world_in_map(saved)
         bag = os.path.join(work, "part2.bag")
         support.tum_to_bag(part, bag, extra=["--config", os.path.join(support.PACKAGE_DIR,
                                                                        "config", "tum_fr1.yaml")])
 
         stats = support.StatsListener()
+        odometry = odometry_that_never_moves()  # noqa: F841 (kept alive: it latches)
+        poses = []
+        rospy.Subscriber("/ply_slam/tracking_node/pose", PoseStamped, poses.append)
+        tf_buffer = tf2_ros.Buffer(rospy.Duration(120))
+        tf2_ros.TransformListener(tf_buffer)
         nodes = subprocess.Popen(["roslaunch", "ply_slam", "tum_bag.launch", "bag:=" + bag,
-                                  "map:=" + saved, "rviz:=false", "output:=log", "delay:=5"])
+                                  "map:=" + saved, "odom_frame:=odom", "rviz:=false",
+                                  "output:=log", "delay:=5"])
         self.addCleanup(lambda: (nodes.send_signal(signal.SIGINT), nodes.wait(30)))
         support.wait_for_nodes()
         self.assertTrue(stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 90),
@@ -79,10 +132,23 @@ class MapReplay(unittest.TestCase):
         self.assertEqual(ate["pairs"], offline["pairs"])
         self.assertLessEqual(ate["rmse"], factor * offline["rmse"])
 
+        # map -> odom in the saved map's frame: the saved placement times the camera's pose.
+        last = poses[-1]
+        sent = tf_buffer.lookup_transform("map", "odom", last.header.stamp, rospy.Duration(5))
+        p, q = last.pose.position, last.pose.orientation
+        expected = matrix(SAVED_PLACE[:3], SAVED_PLACE[3:]) @ matrix((p.x, p.y, p.z),
+                                                                     (q.x, q.y, q.z, q.w))
+        tr, rot = sent.transform.translation, sent.transform.rotation
+        got = matrix((tr.x, tr.y, tr.z), (rot.x, rot.y, rot.z, rot.w))
+        print("map -> odom at the last pose: %s, expected %s" % (got[:3, 3], expected[:3, 3]))
+        self.assertLess(np.abs(got[:3, 3] - expected[:3, 3]).max(), 1e-3)
+        self.assertLess(np.abs(got[:3, :3] - expected[:3, :3]).max(), 1e-3)
+
         # The loaded keyframes have no images: the dense maps are partial, the map file whole.
         folder = os.path.join(work, "saved_again")
         success, message = support.save_map(folder)
         self.assertTrue(os.path.isfile(os.path.join(folder, "map.plymap")), message)
+        np.testing.assert_allclose(read_world_in_map(folder), SAVED_PLACE, atol=1e-9)
         run_tum("--sequence", part, "--out", os.path.join(work, "again"), "--max-frames", "3",
                 "--map", folder)
         with open(os.path.join(work, "again", "summary.json")) as f:

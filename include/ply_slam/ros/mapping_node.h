@@ -118,6 +118,8 @@ class MappingNode {
   // Where the SLAM world lies in map: with odometry, the camera's odom pose at the first frame;
   // without, ~world_in_map when given.
   std::optional<Eigen::Isometry3d> T_map_world_;
+  // ~map: T_map_world_ from the saved map's WorldInMapFile, when it has one.
+  void placeWorldAsSaved(const std::string& folder);
 };
 
 }  // namespace ply_slam
