@@ -28,17 +28,25 @@ DepthSurfaces::DepthSurfaces(const cv::Mat& depth, const DepthNoiseModel& noise,
   cv::Mat small;
   cv::resize(depth, small, cv::Size(depth.cols / step, depth.rows / step), 0, 0, cv::INTER_NEAREST);
   // A pixel beside a depth step belongs to neither side: connected components then stop there.
-  cv::Mat inside(small.size(), CV_8UC1);
-  for (int y = 0; y < small.rows; ++y)
-    for (int x = 0; x < small.cols; ++x) {
-      const float z = small.at<float>(y, x);
-      bool ok = valid(z);
-      if (ok && x + 1 < small.cols) ok = sameSurface(z, small.at<float>(y, x + 1), noise);
-      if (ok && x > 0) ok = sameSurface(z, small.at<float>(y, x - 1), noise);
-      if (ok && y + 1 < small.rows) ok = sameSurface(z, small.at<float>(y + 1, x), noise);
-      if (ok && y > 0) ok = sameSurface(z, small.at<float>(y - 1, x), noise);
-      inside.at<uchar>(y, x) = ok ? 1 : 0;
+  // Each pair of neighbours is compared once: `joined_right` / `joined_down`.
+  const int rows = small.rows, cols = small.cols;
+  cv::Mat joined_right(rows, cols, CV_8UC1, cv::Scalar(1)),
+      joined_down(rows, cols, CV_8UC1, cv::Scalar(1));
+  for (int y = 0; y < rows; ++y) {
+    const float* row = small.ptr<float>(y);
+    const float* below = y + 1 < rows ? small.ptr<float>(y + 1) : nullptr;
+    for (int x = 0; x < cols; ++x) {
+      if (x + 1 < cols) joined_right.at<uchar>(y, x) = sameSurface(row[x], row[x + 1], noise);
+      if (below) joined_down.at<uchar>(y, x) = sameSurface(row[x], below[x], noise);
     }
+  }
+  cv::Mat inside(small.size(), CV_8UC1);
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols; ++x)
+      inside.at<uchar>(y, x) = valid(small.at<float>(y, x)) && joined_right.at<uchar>(y, x) &&
+                               joined_down.at<uchar>(y, x) &&
+                               (x == 0 || joined_right.at<uchar>(y, x - 1)) &&
+                               (y == 0 || joined_down.at<uchar>(y - 1, x));
   cv::Mat stats, centroids;
   const int n = cv::connectedComponentsWithStats(inside, labels_, stats, centroids, 4, CV_32S);
   // Renumber the surfaces large enough to keep 1..count_.
