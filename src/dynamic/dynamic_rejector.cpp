@@ -155,20 +155,7 @@ DynamicRejector::SurfaceHistory DynamicRejector::labelBySurfaces(
   // presumed moving still (a person who stops for a moment is still a person) and judged as
   // one (moved when a few of its features did); a surface not seen moving needs most of its
   // features to have moved.
-  SurfaceHistory history;
-  if (!surface_age_.empty()) {
-    const std::vector<DepthSurfaces::Overlap> overlap = surfaces.overlap(surface_age_, kNoMotion);
-    for (int s = 1; s <= surfaces.count(); ++s)
-      if (overlap[s - 1].share > 0.5 && overlap[s - 1].median < params_.carry_frames)
-        history.presumed[s] = static_cast<uchar>(overlap[s - 1].median + 1);
-  }
-  if (!surface_candidates_.empty()) {
-    const std::vector<DepthSurfaces::Overlap> overlap =
-        surfaces.overlap(surface_candidates_, kNoMotion);
-    for (int s = 1; s <= surfaces.count(); ++s)
-      if (overlap[s - 1].share > 0.5 && overlap[s - 1].median < params_.carry_frames)
-        history.seen_moving[s] = static_cast<uchar>(overlap[s - 1].median + 1);
-  }
+  SurfaceHistory history{agedOn(surfaces, surface_age_), agedOn(surfaces, surface_candidates_)};
   for (const auto& [id, n] : matched)
     if (n >= params_.filter.min_judged_features)
       motion[id] = history.presumed.count(id) || history.seen_moving.count(id)
@@ -184,6 +171,17 @@ bool DynamicRejector::movedApart(const std::vector<FeatureCorrespondence>& match
   for (size_t k = 0; k < matched.size(); ++k)
     if (label[k] == id) body.push_back(matched[k]);
   return filter_.consistency().movedApart(body, fit);
+}
+
+std::map<int, uchar> DynamicRejector::agedOn(const DepthSurfaces& surfaces,
+                                             const cv::Mat& ages) const {
+  std::map<int, uchar> aged;
+  if (ages.empty()) return aged;
+  const std::vector<DepthSurfaces::Overlap> overlap = surfaces.overlap(ages, kNoMotion);
+  for (int s = 1; s <= surfaces.count(); ++s)
+    if (overlap[s - 1].share > 0.5 && overlap[s - 1].median < params_.carry_frames)
+      aged[s] = static_cast<uchar>(overlap[s - 1].median + 1);
+  return aged;
 }
 
 bool DynamicRejector::minority(const std::vector<int>& label, int id,

@@ -91,6 +91,9 @@ class DynamicRejector {
   SurfaceHistory labelBySurfaces(const DepthSurfaces& surfaces, const FrameFeatures& current,
                                  const std::vector<size_t>& feature_of, std::vector<int>& label,
                                  std::map<int, ClassMotion>& motion) const;
+  // The surfaces lying mostly on `ages` (an age image of the last frame, may be empty) with an
+  // age below carry_frames, each with its median age plus one.
+  std::map<int, unsigned char> agedOn(const DepthSurfaces& surfaces, const cv::Mat& ages) const;
   // The features labelled `id` are fewer than minority_share of the static scene's.
   bool minority(const std::vector<int>& label, int id,
                 const DelaunayConsistency::StaticFit& fit) const;
