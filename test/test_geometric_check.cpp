@@ -48,9 +48,9 @@ Eigen::Vector3d withDepthNoise(const Eigen::Vector3d& p, std::mt19937& rng) {
 // that wrong point projects). 0.5 mm noise on every 3D point (the < 1 mm pose bound leaves no
 // room for real depth noise), 0.5 px on every observation.
 // With sensor_noise the Kinect depth model's error is added on top.
-Scene makeScene(int n, double outlier_share, unsigned seed, bool sensor_noise = false) {
+Scene makeScene(int n, double outlier_share, unsigned seed, bool sensor_noise = false,
+                const Eigen::Isometry3d& T_qc = truePose()) {
   const PinholeCamera camera = makeCamera();
-  const Eigen::Isometry3d T_qc = truePose();
   std::mt19937 rng(seed);
   std::normal_distribution<double> mm(0.0, 0.0005), px(0.0, 0.5);
   std::uniform_real_distribution<double> u(-1.0, 1.0), len(0.3, 1.5);
@@ -75,9 +75,17 @@ Scene makeScene(int n, double outlier_share, unsigned seed, bool sensor_noise = 
   return scene;
 }
 
+// The check without the revisit bound: truePose() (0.37 m, 20 deg) is farther than a revisit.
+LoopOptions anyMotion() {
+  LoopOptions o;
+  o.max_revisit_distance_m = 1e9;
+  o.max_revisit_angle_deg = 180.0;
+  return o;
+}
+
 TEST(GeometricCheck, RecoversAKnownMotionThroughOutliers) {
   const Scene scene = makeScene(100, 0.4, 7);
-  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), LoopOptions());
+  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), anyMotion());
   ASSERT_TRUE(r.accepted);
   EXPECT_LT(translationError(r.T_query_candidate, truePose()), 0.001);
   EXPECT_LT(rotationErrorDeg(r.T_query_candidate, truePose()), 0.1);
@@ -95,7 +103,7 @@ TEST(GeometricCheck, AcceptsUnderSensorDepthNoise) {
   // sigma_Z 6..20 mm over 1..4 m: the depth-aware bound keeps the true matches (3 sigma: ~99 %),
   // the pose is good to centimetres, the displaced outliers (>= 0.3 m) stay out.
   const Scene scene = makeScene(100, 0.4, 13, true);
-  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), LoopOptions());
+  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), anyMotion());
   ASSERT_TRUE(r.accepted);
   EXPECT_LT(translationError(r.T_query_candidate, truePose()), 0.02);
   EXPECT_LT(rotationErrorDeg(r.T_query_candidate, truePose()), 0.5);
@@ -105,8 +113,8 @@ TEST(GeometricCheck, AcceptsUnderSensorDepthNoise) {
 
 TEST(GeometricCheck, IsDeterministic) {
   const Scene scene = makeScene(80, 0.4, 11);
-  const GeometricCheckResult a = checkLoopGeometry(scene.matches, makeCamera(), LoopOptions());
-  const GeometricCheckResult b = checkLoopGeometry(scene.matches, makeCamera(), LoopOptions());
+  const GeometricCheckResult a = checkLoopGeometry(scene.matches, makeCamera(), anyMotion());
+  const GeometricCheckResult b = checkLoopGeometry(scene.matches, makeCamera(), anyMotion());
   EXPECT_EQ(a.inliers, b.inliers);
   EXPECT_TRUE(a.T_query_candidate.isApprox(b.T_query_candidate, 0.0));
 }
@@ -124,14 +132,14 @@ TEST(GeometricCheck, RejectsUnrelatedPoints) {
     m.uv_query = camera.project(m.p_query);
     matches.push_back(m);
   }
-  const GeometricCheckResult r = checkLoopGeometry(matches, camera, LoopOptions());
+  const GeometricCheckResult r = checkLoopGeometry(matches, camera, anyMotion());
   EXPECT_FALSE(r.accepted);
   EXPECT_LT(r.inliers_3d, LoopOptions().min_inliers_3d);
 }
 
 TEST(GeometricCheck, TooFewMatchesAreRejected) {
   const Scene scene = makeScene(10, 0.0, 5);  // all correct, but fewer than min_inliers_3d
-  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), LoopOptions());
+  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), anyMotion());
   EXPECT_FALSE(r.accepted);
   EXPECT_EQ(r.inliers_3d, 10);
   EXPECT_FALSE(checkLoopGeometry({}, makeCamera(), LoopOptions()).accepted);
@@ -142,7 +150,7 @@ TEST(GeometricCheck, ReprojectionBoundIsChecked) {
   // reprojects within 4 px, so the candidate is rejected.
   Scene scene = makeScene(60, 0.0, 9);
   for (PutativeMatch& m : scene.matches) m.uv_query.x() += 10.0;
-  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), LoopOptions());
+  const GeometricCheckResult r = checkLoopGeometry(scene.matches, makeCamera(), anyMotion());
   EXPECT_GE(r.inliers_3d, 57);
   EXPECT_EQ(r.reprojection_inliers, 0);
   EXPECT_FALSE(r.accepted);
@@ -156,6 +164,34 @@ TEST(InlierDistance, GrowsWithDepth) {
   LoopOptions precise;
   precise.depth_noise = {0.0, 0.0, 1e-8};  // 0.1 mm: the floor of 1 cm holds
   EXPECT_DOUBLE_EQ(inlierDistance(1.0, 1.0, precise), 0.01);
+}
+
+// A loop is a return to a place: a motion well verified but farther than max_revisit_distance_m
+// or turned more than max_revisit_angle_deg is refused; a small one passes.
+TEST(GeometricCheck, RefusesMotionsBeyondARevisit) {
+  const Scene far = makeScene(100, 0.4, 7);  // 0.37 m, 20 deg
+  const GeometricCheckResult refused = checkLoopGeometry(far.matches, makeCamera(), LoopOptions());
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_GE(refused.inliers_3d, 57);  // verified all the same
+  EXPECT_LT(translationError(refused.T_query_candidate, truePose()), 0.001);
+
+  Eigen::Isometry3d near = Eigen::Isometry3d::Identity();
+  near.linear() =
+      Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d(0.2, 1.0, 0.1).normalized())
+          .toRotationMatrix();
+  near.translation() = Eigen::Vector3d(0.15, -0.05, 0.1);  // 0.19 m
+  const Scene close = makeScene(100, 0.4, 7, false, near);
+  const GeometricCheckResult accepted =
+      checkLoopGeometry(close.matches, makeCamera(), LoopOptions());
+  EXPECT_TRUE(accepted.accepted);
+  EXPECT_LT(translationError(accepted.T_query_candidate, near), 0.001);
+
+  LoopOptions strict;
+  strict.max_revisit_angle_deg = 9.0;  // the same motion, turned more than allowed
+  EXPECT_FALSE(checkLoopGeometry(close.matches, makeCamera(), strict).accepted);
+  strict = LoopOptions();
+  strict.max_revisit_distance_m = 0.18;  // moved farther than allowed
+  EXPECT_FALSE(checkLoopGeometry(close.matches, makeCamera(), strict).accepted);
 }
 
 }  // namespace

@@ -11,8 +11,8 @@
 #include "loop_test_data.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
-#include "ply_slam/loop/loop_key_frame_builder.h"
 #include "ply_slam/loop/loop_detector.h"
+#include "ply_slam/loop/loop_key_frame_builder.h"
 
 namespace ply_slam {
 namespace {
@@ -243,9 +243,7 @@ TEST(LoopKeyFrameBuilder, LeavesOutMoversAndBoxesEveryInstance) {
   packet.keypoint_depth = {1.0f, 2.0f, 3.0f, 4.0f};
   packet.descriptors = cv::Mat::zeros(4, 32, CV_8U);
   for (int r = 0; r < 4; ++r) packet.descriptors.at<uint8_t>(r, 0) = static_cast<uint8_t>(r);
-  LineParams no_lines;
-  no_lines.enabled = false;
-  const LoopKeyFrameBuilder builder(no_lines, PinholeCamera(), LoopOptions(), 2);
+  const LoopKeyFrameBuilder builder(LineParams(), PinholeCamera(), LoopOptions(), 2);
   const LoopKeyFrame kf = builder.build(packet);
   EXPECT_EQ(kf.id, 7);
   ASSERT_EQ(kf.keypoints.size(), 2u);
@@ -253,7 +251,7 @@ TEST(LoopKeyFrameBuilder, LeavesOutMoversAndBoxesEveryInstance) {
   EXPECT_EQ(kf.depth, (std::vector<float>{3.0f, 4.0f}));
   ASSERT_EQ(kf.orb_descriptors.rows, 2);
   EXPECT_EQ(kf.orb_descriptors.at<uint8_t>(1, 0), 3);
-  EXPECT_TRUE(kf.lbd_descriptors.empty());
+  EXPECT_TRUE(kf.lbd_descriptors.empty());  // the packet has no image
   ASSERT_EQ(kf.instances.size(), 2u);
   EXPECT_EQ(kf.instances[0].class_name, "person");
   EXPECT_EQ(kf.instances[1].box, cv::Rect2d(40, 20, 5, 5));
@@ -262,6 +260,28 @@ TEST(LoopKeyFrameBuilder, LeavesOutMoversAndBoxesEveryInstance) {
   const LoopKeyFrame plain = builder.build(packet);
   EXPECT_EQ(plain.keypoints.size(), 4u);
   EXPECT_TRUE(plain.instances.empty());
+}
+
+// Lines describe the place even when tracking runs without them (LineParams::enabled false, the
+// shipped default), except those on a person.
+TEST(LoopKeyFrameBuilder, DescribesLinesWhateverTrackingDoesAndNotOnMovers) {
+  KeyFramePacket packet;
+  packet.rgb = cv::Mat(480, 640, CV_8UC3, cv::Scalar(40, 40, 40));
+  for (int k = 0; k < 4; ++k)  // four bright bars: eight long edges
+    cv::rectangle(packet.rgb, cv::Rect(60 + 140 * k, 60, 40, 360), cv::Scalar(220, 220, 220),
+                  cv::FILLED);
+  LineParams lines;
+  lines.enabled = false;
+  const LoopKeyFrameBuilder builder(lines, testCamera(), LoopOptions(), 0);
+  const int all = builder.build(packet).lbd_descriptors.rows;
+  EXPECT_GE(all, 8);
+
+  packet.label_image = cv::Mat::zeros(480, 640, CV_16UC1);
+  packet.label_image(cv::Rect(40, 0, 90, 480)).setTo(1);  // over the first bar's two edges
+  packet.instances = {{1, "person", 1.0f, true}};
+  const int off_person = builder.build(packet).lbd_descriptors.rows;
+  EXPECT_LT(off_person, all);
+  EXPECT_GE(off_person, 6);
 }
 
 TEST(VocabularyPath, EmptyMeansTheDefaultAndRelativeMeansThePackage) {

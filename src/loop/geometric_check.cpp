@@ -76,6 +76,13 @@ bool reprojects(const Eigen::Vector3d& p, const Eigen::Vector2d& uv, const Pinho
   return p.z() > 0.0 && (camera.project(p) - uv).norm() < max_px;
 }
 
+// The motion is small enough for the two cameras to stand at one place.
+bool isRevisit(const Eigen::Isometry3d& T, const LoopOptions& options) {
+  const double angle_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
+  return T.translation().norm() <= options.max_revisit_distance_m &&
+         angle_deg <= options.max_revisit_angle_deg;
+}
+
 }  // namespace
 
 double inlierDistance(double z_q, double z_c, const LoopOptions& options) {
@@ -111,7 +118,8 @@ GeometricCheckResult checkLoopGeometry(const std::vector<PutativeMatch>& matches
     if (is_3d_inlier[k]) result.inliers.push_back(k);
   }
   result.accepted = result.inliers_3d >= options.min_inliers_3d &&
-                    result.reprojection_inliers >= options.min_reprojection_inliers;
+                    result.reprojection_inliers >= options.min_reprojection_inliers &&
+                    isRevisit(T, options);
   return result;
 }
 

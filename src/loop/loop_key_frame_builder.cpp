@@ -27,7 +27,6 @@ cv::Mat keptRows(const cv::Mat& rows, const std::vector<bool>& keep) {
 LoopKeyFrameBuilder::LoopKeyFrameBuilder(const LineParams& lines, const PinholeCamera& camera,
                                          const LoopOptions& loop, int mask_dilation_px)
     : lines_(lines),
-      lines_enabled_(lines.enabled),
       camera_(camera),
       mover_classes_(loop.dynamic_classes),
       mask_dilation_px_(mask_dilation_px) {}
@@ -72,7 +71,7 @@ void LoopKeyFrameBuilder::readLabels(const KeyFramePacket& packet, std::vector<I
 }
 
 cv::Mat LoopKeyFrameBuilder::describeLines(const cv::Mat& rgb, const cv::Mat& movers) const {
-  if (!lines_enabled_ || rgb.empty()) return cv::Mat();
+  if (rgb.empty()) return cv::Mat();
   cv::Mat gray;
   cv::cvtColor(rgb, gray, cv::COLOR_BGR2GRAY);
   std::vector<LineFeature> lines;

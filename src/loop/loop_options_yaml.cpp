@@ -46,6 +46,8 @@ void readGeometricKeys(ConfigSection& s, LoopOptions& o) {
   s.readInRange("min_inliers_3d", o.min_inliers_3d, 3, 1000000);
   s.readInRange("reprojection_px", o.reprojection_px, 0.0, kHuge);
   s.readInRange("min_reprojection_inliers", o.min_reprojection_inliers, 0, 1000000);
+  s.readInRange("max_revisit_distance_m", o.max_revisit_distance_m, 0.0, kHuge);
+  s.readInRange("max_revisit_angle_deg", o.max_revisit_angle_deg, 0.0, 180.0);
 }
 
 }  // namespace

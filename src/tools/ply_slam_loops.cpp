@@ -263,9 +263,18 @@ AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& c
   return a;
 }
 
+// One query's decision under one variant, with the pair's ground truth (decisions.csv).
+struct DecisionRow {
+  long query = 0, candidate = 0;
+  size_t variant = 0;
+  double normalised = 0.0, gt_distance_m = 0.0, gt_angle_deg = 0.0;
+  bool correct = false, query_has_loop = false;
+};
+
 // What the detector did over the whole sequence.
 struct LoopRun {
   std::vector<ScoredDecision> decisions[kNumVariants];
+  std::vector<DecisionRow> rows;
   std::vector<AcceptedLoop> accepted;
   long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_false = 0;
   long judged = 0, candidates = 0, covisible = 0;  // queries with a reference; sums over queries
@@ -289,8 +298,12 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
     run.covisible += static_cast<long>(detector.keyFrame(view.id).covisibility.size());
     for (size_t v = 0; v < kNumVariants; ++v) {
       const std::optional<Best> best = bestNormalised(d.scores, kVariants[v].score);
-      if (best)
-        run.decisions[v].push_back({best->normalised, truth.pairs.count({view.id, best->id}) > 0});
+      if (!best) continue;
+      const bool correct = truth.pairs.count({view.id, best->id}) > 0;
+      run.decisions[v].push_back({best->normalised, correct});
+      const Eigen::Isometry3d T_qc = view.T_wc.inverse() * by_id.at(best->id)->T_wc;
+      run.rows.push_back({view.id, best->id, v, best->normalised, T_qc.translation().norm(),
+                          angleDeg(T_qc.linear()), correct, truth.queries.count(view.id) > 0});
     }
     if (d.loop) run.accepted.push_back(acceptedLoop(view, *by_id.at(*d.loop), *d.geometry, truth));
     const std::optional<Best> best = bestNormalised(d.scores, &VariantScores::full);
@@ -307,6 +320,19 @@ double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
+}
+
+void writeDecisions(const fs::path& out, const std::vector<DecisionRow>& rows) {
+  AtomicFile file((out / "decisions.csv").string());
+  std::ostream& csv = file.stream();
+  csv << "query,variant,candidate,normalised_score,true_loop,query_has_true_loop,gt_distance_m,"
+         "gt_angle_deg\n"
+      << std::setprecision(6);
+  for (const DecisionRow& r : rows)
+    csv << r.query << ',' << kVariants[r.variant].name << ',' << r.candidate << ',' << r.normalised
+        << ',' << r.correct << ',' << r.query_has_loop << ',' << r.gt_distance_m << ','
+        << r.gt_angle_deg << '\n';
+  file.commit();
 }
 
 void writeCurves(const fs::path& out, const std::vector<std::pair<std::string, PrCurve>>& curves,
@@ -441,6 +467,9 @@ int run(const Options& o) {
   // The system under the evaluation only tracks: its own loop closure would move the map and
   // link the very keyframes whose recognition is measured.
   config.loop.enabled = false;
+  // Every keyframe tracking makes is a query: a culled one would leave the map's covisibility,
+  // which names each query's reference and the keyframes it must not take for a loop.
+  config.culling.keyframes.redundancy = 1.0;
   if (o.segmentation.kind == "none")
     config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
   const TumSequence sequence(o.sequence);
@@ -468,6 +497,7 @@ int run(const Options& o) {
   const std::string title = fs::path(sequence.folder()).filename().string() + "  (" +
                             std::to_string(truth.queries.size()) + " queries with a true loop)";
   writeCurves(o.out, curves, title);
+  writeDecisions(o.out, run.rows);
   writeSummary(o.out, o, info, truth, run, curves, config.loop.min_normalised_score);
   long correct = 0;
   for (const AcceptedLoop& a : run.accepted) correct += a.correct;

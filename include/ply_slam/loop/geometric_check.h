@@ -32,8 +32,9 @@ struct GeometricCheckResult {
 // each hypothesis the closed-form rigid alignment (alignRigid, Umeyama without scale); a match
 // is a 3D inlier when |p_q - T p_c| < inlierDistance(z_q, z_c); the best hypothesis is re-fit on
 // its inliers until the set stops changing. (b) With that pose, each match's point is
-// reprojected into the other image. Accepted when inliers_3d >= min_inliers_3d and
-// reprojection_inliers >= min_reprojection_inliers. Deterministic: the RNG is seeded with
+// reprojected into the other image. Accepted when inliers_3d >= min_inliers_3d,
+// reprojection_inliers >= min_reprojection_inliers and the pose is a revisit (within
+// max_revisit_distance_m and max_revisit_angle_deg). Deterministic: the RNG is seeded with
 // options.ransac_seed.
 GeometricCheckResult checkLoopGeometry(const std::vector<PutativeMatch>& matches,
                                        const PinholeCamera& camera, const LoopOptions& options);

@@ -12,7 +12,9 @@ namespace ply_slam {
 // What place recognition keeps of a keyframe, from the packet the mapping side receives: its
 // ORB features with depth, the LBD descriptors of the lines in its image and its instances'
 // boxes. Features and lines on instances of moving classes (LoopOptions::dynamic_classes) are
-// left out: a person's features match the same person anywhere.
+// left out: a person's features match the same person anywhere. Lines are described whether or
+// not tracking uses them (LineParams::enabled): the point-line score needs them, and once per
+// keyframe they cost what tracking with lines costs on every frame.
 class LoopKeyFrameBuilder {
  public:
   LoopKeyFrameBuilder(const LineParams& lines, const PinholeCamera& camera, const LoopOptions& loop,
@@ -25,11 +27,10 @@ class LoopKeyFrameBuilder {
   // (left empty when none).
   void readLabels(const KeyFramePacket& packet, std::vector<InstanceBox>& boxes,
                   cv::Mat& movers) const;
-  // LBD descriptors of the image's lines whose middle is off the movers (empty: lines off).
+  // LBD descriptors of the image's lines whose middle is off the movers.
   cv::Mat describeLines(const cv::Mat& rgb, const cv::Mat& movers) const;
 
   LineExtractor lines_;
-  bool lines_enabled_;
   PinholeCamera camera_;
   std::vector<std::string> mover_classes_;
   int mask_dilation_px_;

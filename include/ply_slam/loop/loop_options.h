@@ -80,6 +80,14 @@ struct LoopOptions {
   int min_inliers_3d = 15;            // at least this many 3D inliers (ORB-SLAM2 asks ~20)
   double reprojection_px = 4.0;       // px, in both images
   int min_reprojection_inliers = 15;  // at least this many matches reproject in both images
+  // A loop is a return to a place: the check's own estimate of the motion between the two
+  // cameras (drift does not enter it) must be at most this far and this much turned. Views of
+  // the same scene from farther away (down a corridor both see its end; the same wall a step
+  // back) are left to tracking's local map. Below ply_slam_loops' true-loop bound (0.3 m,
+  // 20 deg) by the check's largest motion error on the synthetic loop scenes (0.07 m, 0.9 deg)
+  // and a margin for real depth.
+  double max_revisit_distance_m = 0.2;
+  double max_revisit_angle_deg = 15.0;
 };
 
 }  // namespace ply_slam
