@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad input as a hostile user gives it (issue #19): broken configs, a ground truth that does not
+# Bad input as a hostile user gives it: broken configs, a ground truth that does not
 # fit, outputs that cannot be written, swapped model sizes, unknown options, duplicate and huge
 # poses for ply_slam_eval. Prints one line per case: name, exit code, the last words on stderr
 # (the "Bad input" table of docs/RESULTS.md). Runs the binaries of the last build

@@ -80,7 +80,8 @@ lines = ["Command: `%s` (config/tum_fr1.yaml; walkers = fr1_rpy_150_349_walkers,
          "live = --live). Walker features: keypoints on a ground-truth walker mask; "
          "static: farther than 5 px from one. *Kept*: not dropped by the rejection; *used*: inlier of the "
          "pose optimisation. Dense ghosts: share of the dense map's points, and of the octree's occupied "
-         "voxels, that mostly come from ground-truth walker pixels (section on issue #7)." % command, "",
+         "voxels, that mostly come from ground-truth walker pixels (section \"Dense and semantic "
+         "octree maps\")." % command, "",
          "| run | segmenter | --dynamic | ATE RMSE (m) | lost | walker features kept | walker features used | static dropped | dense points from walkers | octree voxels from walkers | tracking ms median | segmentation ms median |",
          "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for line in open(rows):

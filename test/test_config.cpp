@@ -344,7 +344,7 @@ TEST_F(ConfigFileTest, DistortionNeedsFourOrFiveCoefficients) {
   EXPECT_TRUE(config.camera.hasDistortion());
 }
 
-// The dense section (issue #7): values are read, and bad ones are named.
+// The dense section: values are read, and bad ones are named.
 TEST_F(ConfigFileTest, DenseSection) {
   const std::string base = kValidYaml;
   const SystemConfig config =
@@ -419,7 +419,7 @@ TEST_F(ConfigFileTest, LinesSurfaceBand) {
                     {"lines.surface_band_px"});
 }
 
-// The loop section (issue #16): read through the loop module's reader, errors name the file;
+// The loop section: read through the loop module's reader, errors name the file;
 // the depth noise comes from the camera; "" vocabulary paths mean the trained defaults.
 TEST_F(ConfigFileTest, LoopSection) {
   const std::string base = kValidYaml;

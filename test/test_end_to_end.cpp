@@ -38,7 +38,7 @@ RunOutcome runSequence(const std::string& folder,
   return outcome;
 }
 
-// The bounds of issue #2 (docs/RESULTS.md has the measured values).
+// The point-tracking bounds on the shared TUM excerpts (docs/RESULTS.md has the measured values).
 TEST(EndToEnd, Freiburg1Xyz37) {
   const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
   PLY_SLAM_REQUIRE_SHARED(folder);
@@ -59,7 +59,7 @@ TEST(EndToEnd, Freiburg1Rpy150To349) {
   EXPECT_LE(r.ate_rmse, 0.015);  // measured 0.0078
 }
 
-// Issue #3: the synthetic office without walkers, exact ground truth, 300 frames.
+// The synthetic office without walkers, exact ground truth, 300 frames.
 TEST(EndToEnd, SyntheticOffice) {
   // Per process: two test runs at once (two build trees) must not share the folder.
   const std::filesystem::path dir =

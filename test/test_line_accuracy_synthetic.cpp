@@ -1,6 +1,6 @@
 // The accepted 3D lines of the paper's fit (§3.1) and of endpoint back-projection against the
 // synthetic scenes' true segments: the share with both ends within 2 cm of the true segment
-// and a direction within 1 degree. Issue #4 asks for >= 90 % of the paper fit's. Measured with
+// and a direction within 1 degree. The target is >= 90 % of the paper fit's. Measured with
 // the sensor noise of the generator: the paper's fit as such 49-56 %; with each line's depth
 // re-read from the surfaces beside it (LineDepthRefiner, the default) 74-78 %. The failures
 // left are mostly directions of short lines 3-5 m away whose surface is a few pixels wide, and

@@ -1,4 +1,4 @@
-// Lines in tracking (issue #4 items 4, 5, 7): the pose optimiser with the endpoint-to-line
+// Lines in tracking: the pose optimiser with the endpoint-to-line
 // residual of PAPER.md §3 (lines only, and with points) on synthetic scenes with a known pose
 // and gross outliers, and end to end: lines.enabled false is exactly the points-only tracker.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Precision-recall curves and the ground truth of loops (eval module, issue #16).
+// Precision-recall curves and the ground truth of loops (eval module).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Map files (map module, issue #20): a saved map loads again as it was, and a missing,
+// Map files (map module): a saved map loads again as it was, and a missing,
 // truncated, corrupted, other-version or other-vocabulary file is refused with an error naming
 // the file and the fault, the system left unchanged.
 #include <gtest/gtest.h>

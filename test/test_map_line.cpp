@@ -1,5 +1,5 @@
-// MapLine::fuse: the fits of one line from the frames that see it averaged into the landmark
-// (issue #4); MapLine::distanceToLine, which the tracker uses to keep other lines' fits out.
+// MapLine::fuse: the fits of one line from the frames that see it averaged into the landmark;
+// MapLine::distanceToLine, which the tracker uses to keep other lines' fits out.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Map lines after tracking a synthetic scene (issue #4): each map line averages the 3D fits of
+// Map lines after tracking a synthetic scene: each map line averages the 3D fits of
 // the frames that match it (MapLine::fuse, Tracker). Judged like the per-frame fits of
 // test_line_accuracy_synthetic: a map line counts when, projected into the keyframe that
 // created it, it images a true segment; good when both its ends lie within 2 cm of that segment

@@ -1,4 +1,4 @@
-// Localisation in a loaded map (issue #20): map the first half of fr1_rpy_150_349, save it,
+// Localisation in a loaded map: map the first half of fr1_rpy_150_349, save it,
 // load it into a new System and run the second half: relocalised within 10 frames, no pose
 // before, and the poses in the saved map's frame. That frame is checked with the ground-truth
 // alignment of the mapping run, not with a fit of its own: a free fit would hide an offset.

@@ -23,7 +23,7 @@ double iou(const cv::Mat& a, const cv::Mat& b) {
   return uni > 0 ? inter / uni : 0.0;
 }
 
-// Issue #5's measure: over frames where a walker covers > 2 % of the image, the median IoU of
+// The YOLOv8-seg target: over frames where a walker covers > 2 % of the image, the median IoU of
 // its ground-truth mask with the best-overlapping person mask is >= 0.6 (every 20th frame).
 void expectWalkersFound(const std::string& model, int width, int height) {
   const std::string folder = test::sharedPath(kWalkers);

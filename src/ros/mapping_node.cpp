@@ -94,7 +94,7 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   lines_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("map_lines", 1, true);
   keyframes_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("keyframes", 1, true);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
-  // Dense cloud and octree (issue #7): built on the worker's thread from the keyframes'
+  // Dense cloud and octree: built on the worker's thread from the keyframes'
   // images, published every ~dense_publish_period seconds. Settings: the config's dense section.
   const SystemConfig config = pnh_.hasParam("config") ? configFromParams(pnh_) : SystemConfig();
   if (config.dense.enabled) {

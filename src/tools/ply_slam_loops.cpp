@@ -1,4 +1,4 @@
-// Place recognition on a TUM folder (issue #16, PAPER.md §3.3):
+// Place recognition on a TUM folder (PAPER.md §3.3):
 //   ply_slam_loops --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
 //                  [--model ONNX --input WxH] [--max-frames N] [--min-gap-s 10]
 // Tracks the sequence with the SLAM system, puts every keyframe into the loop detector's

@@ -208,7 +208,7 @@ Json statsJson(const ErrorStats& s) {
           {"max", rounded(s.max)}};
 }
 
-// Dense and semantic octree maps (issue #7) ---------------------------------------------------
+// Dense and semantic octree maps ------------------------------------------------------------------
 
 // The ground-truth masks of the moving things (active classes) in one frame, undilated: what
 // a ghost in the maps would come from.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""rostest (issue #20): a map saved by ply_slam_tum from the first frames of a sequence, loaded by
+"""rostest: a map saved by ply_slam_tum from the first frames of a sequence, loaded by
 tracking_node through tum_bag.launch map:=DIR, the rest of the sequence played as a bag. Checks:
 every frame tracked (relocalised at once, as offline), the ATE in the saved map's frame (aligned
 as the run that made the map) within the allowed factor of ply_slam_tum --map on the same

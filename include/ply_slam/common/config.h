@@ -137,7 +137,7 @@ struct DynamicParams {
                                               "cell phone", "sports ball", "teddy bear"};
 };
 
-// Dense and semantic octree maps (dense module, issue #7): keyframe point clouds without the
+// Dense and semantic octree maps (dense module): keyframe point clouds without the
 // pixels of moving things, and an OctoMap ColorOcTree coloured by class.
 struct DenseParams {
   bool enabled = true;              // false: no dense map, no octree

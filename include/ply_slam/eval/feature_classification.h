@@ -8,7 +8,7 @@
 namespace ply_slam {
 
 // Counts, against ground-truth masks of the moving objects, what the dynamic rejection did
-// with the features of each frame (issue #5): features on a walker that still reached the
+// with the features of each frame: features on a walker that still reached the
 // pose optimisation, and static features that were dropped.
 class FeatureClassification {
  public:

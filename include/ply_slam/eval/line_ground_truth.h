@@ -9,7 +9,7 @@
 
 namespace ply_slam {
 
-// How far a reconstructed 3D segment is from the true segment it belongs to (issue #4).
+// How far a reconstructed 3D segment is from the true segment it belongs to.
 struct LineError {
   double endpoint_m = 0.0;  // the larger distance of its two ends to the true segment
   double angle_deg = 0.0;   // between the two directions

@@ -8,7 +8,7 @@
 
 namespace ply_slam {
 
-// When two keyframes are a true loop (issue #16): taken more than min_gap_s apart, their
+// When two keyframes are a true loop for ply_slam_loops: taken more than min_gap_s apart, their
 // ground-truth camera centres within max_distance_m and their orientations within
 // max_angle_deg, and their views overlap: at least min_overlap of one keyframe's sampled depth
 // points (every pixel_step-th pixel in both directions, valid depth) land inside the other's

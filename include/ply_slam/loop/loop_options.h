@@ -55,7 +55,7 @@ struct LoopOptions {
   // Candidates must be at least this much older than the query (s). A return to a place after a
   // while is a loop; a keyframe of the last seconds that tracking failed to connect is the
   // local map's and relocalisation's business, and closing a "loop" to it corrects no drift.
-  // Issue #16 defines true loops as more than 10 s apart.
+  // ply_slam_loops defines true loops as more than 10 s apart (--min-gap-s).
   double min_candidate_age_s = 10.0;
   // alpha: minimum normalised score S_fin(query, cand) / S_fin(query, best covisible). The
   // paper sweeps 0.1..0.8; 0.3 is DBoW2's usual normalised-score threshold.

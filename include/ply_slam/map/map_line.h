@@ -5,7 +5,7 @@
 
 namespace ply_slam {
 
-// A static 3D line segment landmark (issue #4), created at a keyframe from an accepted 3D fit
+// A static 3D line segment landmark, created at a keyframe from an accepted 3D fit
 // (PAPER.md §3.1) moved into the world frame, matched by its LBD descriptor. Every later
 // tracked frame that matches it with an accepted fit of its own on the same 3D line averages
 // that fit in (Tracker), as map points average their depth measurements.

@@ -11,7 +11,7 @@
 
 namespace ply_slam {
 
-// The dense maps as ROS messages (issue #7): the global cloud with fields x y z rgb label
+// The dense maps as ROS messages: the global cloud with fields x y z rgb label
 // (label = COCO class id + 1, 0 = unknown), the occupied octree voxels as one CUBE_LIST per
 // colour, and their centres as a cloud with x y z rgb.
 sensor_msgs::PointCloud2 toDenseCloudMsg(const DenseCloud& cloud, const std_msgs::Header& header);

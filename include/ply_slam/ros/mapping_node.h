@@ -100,7 +100,7 @@ class MappingNode {
   ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
 
-  // Dense cloud and semantic octree (issue #7), on their own thread; null when disabled.
+  // Dense cloud and semantic octree, on their own thread; null when disabled.
   std::unique_ptr<DenseMappingWorker> dense_;
   ros::Publisher dense_cloud_pub_, octomap_markers_pub_, octomap_cloud_pub_;
   ros::Timer dense_timer_;

@@ -36,7 +36,7 @@ struct PoseOptimizerParams {
   int max_iterations = 10;    // per round
   // A round stops once an iteration changes the cost by less than this share: the solve
   // starts from a predicted or already refined pose, and Ceres' 1e-6 only bought iterations
-  // (with lines 5.5 instead of 2.2 per round, same ATE; docs/RESULTS.md, issue #4).
+  // (with lines 5.5 instead of 2.2 per round, same ATE; docs/RESULTS.md, "Lines in tracking").
   double function_tolerance = 1e-3;
 };
 
