@@ -121,8 +121,14 @@ TEST_F(LoopDetectorTest, QueriesSeeOnlyKeyFramesOldEnough) {
   const LoopDetector detector = filledDetector();
   // Keyframe 2 (window 200) shares landmarks with 16 (window 200) and 17 (300): both later.
   for (const ScoredCandidate& c : detector.score(2).candidates) EXPECT_LT(c.id, 2);
-  // Keyframe 12 (24 s): 7 (14 s) and older are candidates, 8 (16 s) to 10 are too recent.
-  for (const ScoredCandidate& c : detector.score(12).candidates) EXPECT_LE(c.id, 7);
+  // Keyframe 12 (24 s): 6 (12 s) and older are candidates; 7 (14 s) is exactly 10 s older, not
+  // more (ply_slam_loops' true loops are more than 10 s apart), 8 (16 s) to 10 are too recent.
+  for (const ScoredCandidate& c : detector.score(12).candidates) EXPECT_LE(c.id, 6);
+  LoopOptions younger;
+  younger.min_candidate_age_s = 9.9;
+  bool seven = false;
+  for (const ScoredCandidate& c : filledDetector(younger).score(12).candidates) seven |= c.id == 7;
+  EXPECT_TRUE(seven);
   LoopOptions no_age;
   no_age.min_candidate_age_s = 0.0;
   bool recent = false;

@@ -113,10 +113,10 @@ LoopQueryScores LoopDetector::score(long query_id) const {
                    bowScore(words->lines, ref->lines), nullptr);
   }
   // Later keyframes, the query itself, recent ones and covisible ones are never candidates.
-  const double newest = query.keyframe.stamp - options_.min_candidate_age_s;
   const auto exclude = [&](long id) {
     const Entry& e = entry(id);
-    return e.order >= query.order || e.keyframe.stamp > newest ||
+    return e.order >= query.order ||
+           query.keyframe.stamp - e.keyframe.stamp <= options_.min_candidate_age_s ||
            query.keyframe.covisibility.count(id) > 0;
   };
   for (const BowCandidate& c : database_.query(words->points, words->lines, 0, exclude)) {

@@ -242,15 +242,22 @@ struct AcceptedLoop {
   // Ground truth of the pair: camera distance and angle, and how far the check's estimated
   // motion is from the true one (what a loop correction would get wrong).
   double gt_distance_m = 0.0, gt_angle_deg = 0.0, motion_error_m = 0.0, motion_error_deg = 0.0;
+  double query_stamp = 0.0, candidate_stamp = 0.0;
+  double overlap = 0.0;  // the larger of the two views' overlaps (the definition's test)
 };
 
 double angleDeg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
 
 AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& candidate,
-                          const GeometricCheckResult& check, const TruthTable& truth) {
+                          const GeometricCheckResult& check, const TruthTable& truth,
+                          const PinholeCamera& small, const LoopGroundTruthParams& params) {
   AcceptedLoop a;
   a.query = query.id;
   a.candidate = candidate.id;
+  a.query_stamp = query.stamp;
+  a.candidate_stamp = candidate.stamp;
+  a.overlap = std::max(viewOverlap(query, candidate, small, params),
+                       viewOverlap(candidate, query, small, params));
   a.inliers_3d = check.inliers_3d;
   a.reprojection_inliers = check.reprojection_inliers;
   a.correct = truth.pairs.count({query.id, candidate.id}) > 0;
@@ -285,7 +292,8 @@ struct LoopRun {
 // consistency and the geometric check, and the geometric check alone on each query's best
 // ORB+LBD+instances candidate (what it would have to stop at any alpha).
 LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& views,
-                   const TruthTable& truth) {
+                   const TruthTable& truth, const PinholeCamera& small,
+                   const LoopGroundTruthParams& params) {
   LoopRun run;
   std::map<long, const GroundTruthView*> by_id;
   for (const GroundTruthView& view : views) by_id[view.id] = &view;
@@ -305,7 +313,9 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
       run.rows.push_back({view.id, best->id, v, best->normalised, T_qc.translation().norm(),
                           angleDeg(T_qc.linear()), correct, truth.queries.count(view.id) > 0});
     }
-    if (d.loop) run.accepted.push_back(acceptedLoop(view, *by_id.at(*d.loop), *d.geometry, truth));
+    if (d.loop)
+      run.accepted.push_back(
+          acceptedLoop(view, *by_id.at(*d.loop), *d.geometry, truth, small, params));
     const std::optional<Best> best = bestNormalised(d.scores, &VariantScores::full);
     if (!best) continue;
     ++run.geometry_checked;
@@ -420,7 +430,9 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
       << ", \"gt_distance_m\": " << jsonNumber(a.gt_distance_m)
       << ", \"gt_angle_deg\": " << jsonNumber(a.gt_angle_deg)
       << ", \"motion_error_m\": " << jsonNumber(a.motion_error_m)
-      << ", \"motion_error_deg\": " << jsonNumber(a.motion_error_deg) << "}";
+      << ", \"motion_error_deg\": " << jsonNumber(a.motion_error_deg) << ", \"stamps\": ["
+      << std::setprecision(17) << a.query_stamp << ", " << a.candidate_stamp
+      << "], \"overlap\": " << jsonNumber(a.overlap) << "}";
   }
   j << "]},\n  \"geometry_on_best_candidates\": {\"checked\": " << run.geometry_checked
     << ", \"passed_true\": " << run.geometry_passed_true
@@ -489,7 +501,8 @@ int run(const Options& o) {
                    o.keep_long_links ? std::numeric_limits<double>::infinity() : o.truth.min_gap_s,
                    detector);
   const TruthTable truth = trueLoops(collector.views(), sequence, config.camera, detector, o.truth);
-  const LoopRun run = runQueries(detector, collector.views(), truth);
+  const LoopRun run = runQueries(detector, collector.views(), truth,
+                                 scaledCamera(config.camera, kDepthFactor), o.truth);
   std::vector<std::pair<std::string, PrCurve>> curves;
   for (size_t v = 0; v < kNumVariants; ++v)
     curves.emplace_back(kVariants[v].name,

@@ -52,10 +52,11 @@ struct LoopOptions {
   // each other, and the query's best of them is its reference. ORB-SLAM's 15: in a small room
   // every keyframe shares a few points with every other, which says little.
   int min_covisible_shared = 15;
-  // Candidates must be at least this much older than the query (s). A return to a place after a
+  // Candidates must be more than this much older than the query (s). A return to a place after a
   // while is a loop; a keyframe of the last seconds that tracking failed to connect is the
   // local map's and relocalisation's business, and closing a "loop" to it corrects no drift.
-  // ply_slam_loops defines true loops as more than 10 s apart (--min-gap-s).
+  // ply_slam_loops defines true loops as more than 10 s apart (--min-gap-s), by the same
+  // comparison of the two stamps' difference (30 Hz frames 10 s apart are common).
   double min_candidate_age_s = 10.0;
   // alpha: minimum normalised score S_fin(query, cand) / S_fin(query, best covisible). The
   // paper sweeps 0.1..0.8; 0.3 is DBoW2's usual normalised-score threshold.
