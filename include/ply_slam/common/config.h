@@ -32,7 +32,7 @@ struct OrbParams {
 // Line features (features module): LSD segments, merging, LBD, 3D fitting (PAPER.md §3.1) and
 // matching between frames.
 struct LineParams {
-  bool enabled = false;              // lines in tracking; false: nothing about lines runs
+  bool enabled = false;              // lines in tracking (place recognition always has them)
   std::string balance = "paper";     // F(n) of the line term: "paper" 2n/50, "one" F = 1
   double residual_sigma_px = 1.0;    // B = sigma^2 I of the line residual in pose optimisation
   std::string detector = "auto";     // "lsd", "edlines", or "auto": LSD where OpenCV has it
