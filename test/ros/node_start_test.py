@@ -15,16 +15,17 @@ import rostest
 import ros_test_support as support
 
 
-def start(node, name, **params):
-    for key, value in params.items():
-        rospy.set_param("/node_start/%s/%s" % (name, key), value)
-    return subprocess.Popen([support.tool(node), "__name:=" + name, "__ns:=/node_start"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-
-
 class NodeStart(unittest.TestCase):
+    def start(self, node, name, **params):
+        for key, value in params.items():
+            rospy.set_param("/node_start/%s/%s" % (name, key), value)
+        process = subprocess.Popen([support.tool(node), "__name:=" + name, "__ns:=/node_start"],
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.addCleanup(process.kill)  # a node that failed to stop is not left running
+        return process
+
     def test_mapping_node_runs_without_world_in_map(self):
-        node = start("mapping_node", "no_placement", world_frame="ply_slam_world",
+        node = self.start("mapping_node", "no_placement", world_frame="ply_slam_world",
                      world_in_map=[])
         time.sleep(3)
         alive = node.poll() is None
@@ -33,14 +34,14 @@ class NodeStart(unittest.TestCase):
         self.assertTrue(alive, "mapping_node stopped: " + output)
 
     def test_mapping_node_says_why_it_stops(self):
-        node = start("mapping_node", "bad_placement", world_frame="ply_slam_world",
+        node = self.start("mapping_node", "bad_placement", world_frame="ply_slam_world",
                      world_in_map=[1.0, 2.0, 3.0])
         output = node.communicate(timeout=30)[0]
         self.assertEqual(node.returncode, 1, output)
         self.assertIn("world_in_map needs 6 numbers", output)
 
     def test_tracking_node_says_why_it_stops(self):
-        node = start("tracking_node", "no_config")
+        node = self.start("tracking_node", "no_config")
         output = node.communicate(timeout=30)[0]
         self.assertEqual(node.returncode, 1, output)
         self.assertIn("no such parameter", output)
