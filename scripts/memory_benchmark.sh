@@ -51,14 +51,7 @@ done
 
 OUT_ROOT="${PLY_SLAM_ROOT}/build/memory_benchmark"
 SEQ="${OUT_ROOT}/${SCENE}_${FRAMES}"
-# A finished rendering has all its frames listed; anything else is rendered again.
-if [ ! -f "${SEQ}/rgb.txt" ] || [ "$(grep -vc '^#' "${SEQ}/rgb.txt")" -ne "$FRAMES" ]; then
-  echo "[memory] rendering ${SCENE}, ${FRAMES} frames (log: ${OUT_ROOT}/render.log)"
-  mkdir -p "$OUT_ROOT"
-  rm -rf "$SEQ"
-  "${PLY_SLAM_BIN}/ply_slam_synth" --out "$SEQ" --scene "$SCENE" --frames "$FRAMES" --loop \
-    >"${OUT_ROOT}/render.log" 2>&1 || { tail -n 20 "${OUT_ROOT}/render.log"; exit 1; }
-fi
+ply_slam_render_once "$SEQ" "$SCENE" "$FRAMES" "${OUT_ROOT}/render.log" --loop || exit 1
 # The same camera without the dense cloud and octree: the difference is what they hold.
 NO_DENSE="${OUT_ROOT}/${SCENE}_no_dense.yaml"
 { cat "${SEQ}/camera.yaml"; printf 'dense:\n  enabled: false\n'; } >"$NO_DENSE"

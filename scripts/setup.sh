@@ -101,3 +101,16 @@ ply_slam_config_for() {
     return 1
   fi
 }
+
+# A synthetic sequence rendered once and kept: DIR SCENE FRAMES LOG [more ply_slam_synth
+# options]. A finished rendering lists all its frames; anything else is rendered again.
+ply_slam_render_once() {
+  local dir=$1 scene=$2 frames=$3 log=$4
+  shift 4
+  [ -f "${dir}/rgb.txt" ] && [ "$(grep -vc '^#' "${dir}/rgb.txt")" -eq "$frames" ] && return 0
+  echo "[setup] rendering ${scene}, ${frames} frames $* (log: ${log})"
+  mkdir -p "$(dirname "$log")"
+  rm -rf "$dir"
+  "${PLY_SLAM_BIN}/ply_slam_synth" --out "$dir" --scene "$scene" --frames "$frames" "$@" \
+    >"$log" 2>&1 || { tail -n 20 "$log"; return 1; }
+}

@@ -175,6 +175,23 @@ TEST(ErasePoint, UnlinksItFromEveryKeyFrame) {
   expectConsistent(h.map_);
 }
 
+// What left the container is named once, for the MapUpdate that tells mapping_node.
+TEST(RemoveBadPoints, NamesTheRemovedPointsOnce) {
+  HandMap h(4);
+  h.addChain(2);
+  h.see(0, 0, 4);
+  h.see(1, 0, 4);
+  h.map_.erasePoint(h.points_[1]);
+  h.map_.erasePoint(h.points_[3]);
+  EXPECT_EQ(h.map_.removeBadPoints(), 2u);
+  EXPECT_EQ(h.map_.takeRemovedPoints(), (std::vector<long>{h.points_[1]->id, h.points_[3]->id}));
+  EXPECT_TRUE(h.map_.takeRemovedPoints().empty());
+  const auto kept = h.map_.mapPoints();
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0], h.points_[0]);  // the kept ones in their order
+  EXPECT_EQ(kept[1], h.points_[2]);
+}
+
 // Five keyframes: points 0-9 seen by all, 10-14 by keyframes 0 and 1 only, 15-19 by 3 and 4
 // only. Keyframe 2 sees only 0-9, each by four others: redundant. Keyframes 1 and 3 have a
 // third of their points seen by one other keyframe: kept.

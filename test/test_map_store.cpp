@@ -74,6 +74,18 @@ TEST(MapStore, AppliesUpdates) {
   EXPECT_EQ(store.points().count(10), 0u);
 }
 
+TEST(MapStore, ForgetsErasedPoints) {
+  MapStore store;
+  store.insert(packet(0, 1.0, 0.0));
+  store.insert(packet(1, 2.0, 1.0));
+  MapUpdate update;
+  update.erased_points = {1, 10, 77};  // 77 is unknown: ignored
+  store.apply(update);
+  ASSERT_EQ(store.points().size(), 2u);
+  EXPECT_EQ(store.points().count(0), 1u);
+  EXPECT_EQ(store.points().count(11), 1u);
+}
+
 TEST(MapStore, SavesEverythingItHolds) {
   MapStore store;
   store.insert(packet(0, 1.0, 0.0));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace ply_slam {
 
@@ -95,10 +96,16 @@ void Map::replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<
 size_t Map::removeBadPoints() {
   std::lock_guard<std::mutex> lock(mutex_);
   const size_t before = points_.size();
-  points_.erase(std::remove_if(points_.begin(), points_.end(),
-                               [](const std::shared_ptr<MapPoint>& p) { return p->bad; }),
-                points_.end());
+  const auto bad = std::stable_partition(
+      points_.begin(), points_.end(), [](const std::shared_ptr<MapPoint>& p) { return !p->bad; });
+  for (auto it = bad; it != points_.end(); ++it) removed_points_.push_back((*it)->id);
+  points_.erase(bad, points_.end());
   return before - points_.size();
+}
+
+std::vector<long> Map::takeRemovedPoints() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::exchange(removed_points_, {});
 }
 
 void Map::erasePoint(const std::shared_ptr<MapPoint>& point) {

@@ -5,8 +5,11 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "mapping_node");
+  // Held here, not by the node alone: when its constructor throws, the last NodeHandle going
+  // would shut ROS down and its logging with it, and the node would die without a word.
+  ros::NodeHandle nh, pnh("~");
   try {
-    ply_slam::MappingNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    ply_slam::MappingNode node(nh, pnh);
     ros::spin();
   } catch (const std::exception& e) {
     ROS_FATAL_STREAM("mapping_node: " << e.what());

@@ -286,6 +286,7 @@ MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
   m.lines = toMsgs<Line3DMsg>(u.lines);
   m.merged_points = toMsgs<LandmarkMergeMsg>(u.merged_points);
   m.erased_keyframes.assign(u.erased_keyframes.begin(), u.erased_keyframes.end());
+  m.erased_points.assign(u.erased_points.begin(), u.erased_points.end());
   m.whole_map = u.whole_map;
   return m;
 }
@@ -298,6 +299,7 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.lines = fromMsgs<LandmarkLine>(m.lines);
   u.merged_points = fromMsgs<MapUpdate::Merge>(m.merged_points);
   u.erased_keyframes.assign(m.erased_keyframes.begin(), m.erased_keyframes.end());
+  u.erased_points.assign(m.erased_points.begin(), m.erased_points.end());
   u.whole_map = m.whole_map;
   return u;
 }

@@ -70,8 +70,9 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   // A fixed placement of the SLAM world in the map frame, e.g. to show the optical-frame world of
   // a TUM bag upright: x y z (m) yaw pitch roll (rad), as tf2_ros static_transform_publisher.
+  // [] (mapping.launch's default) = none.
   std::vector<double> world_in_map;
-  if (pnh_.getParam("world_in_map", world_in_map) && odom_frame_.empty() &&
+  if (pnh_.getParam("world_in_map", world_in_map) && !world_in_map.empty() && odom_frame_.empty() &&
       world_frame_ != map_frame_) {
     if (world_in_map.size() != 6)
       throw std::invalid_argument("~world_in_map needs 6 numbers: x y z yaw pitch roll");

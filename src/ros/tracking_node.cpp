@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <future>
+#include <iomanip>
 #include <sstream>
 
 #include "ply_slam/common/statistics.h"
@@ -39,6 +40,7 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   world_frame_ = pnh_.param<std::string>("world_frame", "map");
   frame_queue_size_ = static_cast<size_t>(std::max(1, pnh_.param("frame_queue_size", 100)));
   const int sync_queue = std::max(1, pnh_.param("sync_queue_size", 10));
+  unpaired_rgb_ = unpaired_depth_ = UnpairedImages(2 * static_cast<size_t>(sync_queue));
   sync_slop_ = pnh_.param("sync_slop", 0.02);
   flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
   map_folder_ = pnh_.param<std::string>("map", "");
@@ -121,12 +123,16 @@ TrackingNode::~TrackingNode() {
 
 void TrackingNode::onRgb(const sensor_msgs::ImageConstPtr& rgb) {
   ++rgb_received_;
+  if (const auto given_up = unpaired_rgb_.arrived(rgb->header.stamp.toSec()))
+    reportUnpaired("colour", *given_up);
   newest_rgb_ = rgb;
   newest_arrival_ = ros::WallTime::now();
 }
 
 void TrackingNode::onDepth(const sensor_msgs::ImageConstPtr& depth) {
   ++depth_received_;
+  if (const auto given_up = unpaired_depth_.arrived(depth->header.stamp.toSec()))
+    reportUnpaired("depth", *given_up);
   newest_depth_ = depth;
   newest_arrival_ = ros::WallTime::now();
 }
@@ -136,10 +142,22 @@ void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
   if (!last_paired_rgb_stamp_.isZero() && rgb->header.stamp <= last_paired_rgb_stamp_ &&
       flushed_ > 0)
     return;  // already tracked by flushStalledPair
+  for (double stamp : unpaired_rgb_.paired(rgb->header.stamp.toSec()))
+    reportUnpaired("colour", stamp);
+  for (double stamp : unpaired_depth_.paired(depth->header.stamp.toSec()))
+    reportUnpaired("depth", stamp);
   last_paired_rgb_stamp_ = std::max(last_paired_rgb_stamp_, rgb->header.stamp);
   last_paired_depth_stamp_ = std::max(last_paired_depth_stamp_, depth->header.stamp);
   ++synchronised_;
   enqueue({rgb, depth});
+}
+
+void TrackingNode::reportUnpaired(const std::string& what, double stamp) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(6) << what << " image stamped " << stamp << " had no "
+    << (what == "colour" ? "depth" : "colour") << " image within " << sync_slop_
+    << " s; the synchroniser dropped it";
+  bad_input_.report("unpaired", s.str());
 }
 
 // Runs on the spinner thread like the subscriber callbacks, so it needs no lock of its own.

@@ -143,6 +143,7 @@ void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
   }
   MapUpdate update = result.loop_correction ? mapper_.wholeMap() : mapper_.localUpdate(keyframe);
   update.erased_keyframes = mapped.culled_keyframes;
+  update.erased_points = map_.takeRemovedPoints();
   result.map_update = std::make_shared<const MapUpdate>(std::move(update));
   result.timing.mapping_ms = mapping.elapsedMs();
 }

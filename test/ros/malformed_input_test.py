@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """rostest: publishes the frames of a shared TUM sequence itself, at 30 Hz, with malformed
 messages between the good ones (wrong encodings, sizes that disagree with camera_info, empty
-images, truncated data, stamps going backwards, camera_info with a NaN in K or D). The nodes
-must skip the bad ones, say why, and keep tracking every good frame as accurately as the
-offline run."""
+images, truncated data, stamps going backwards, camera_info with a NaN in K or D) and a colour
+image without depth before them. The nodes must skip the bad ones, say why, and keep tracking
+every good frame as accurately as the offline run."""
 import copy
 import os
 import shutil
@@ -90,8 +90,13 @@ class MalformedInput(unittest.TestCase):
                                              for p in publishers.values()):
             time.sleep(0.1)
 
-        sent_bad = 0
         first_stamp = goods[0][0].header.stamp
+        # A colour image whose depth never comes, 1 s before the first frame (between frames a
+        # real TUM depth stamp, up to 15 ms off its colour's, could pair with it): the
+        # synchroniser drops it, the tracker must count it as "unpaired" and say so.
+        publishers[RGB].publish(copy_with(goods[0][0], first_stamp - rospy.Duration(1.0)))
+        sent_bad = 1
+        time.sleep(1.0 / 30)
         for i, (rgb, depth, info) in enumerate(goods):
             # A camera_info with a NaN in D (first frame: the only one there) or in K: refused,
             # never used for intrinsics (it once took mapping_node down at the first keyframe).
@@ -125,7 +130,7 @@ class MalformedInput(unittest.TestCase):
             alive = subprocess.run(["rosnode", "ping", "-c", "1", node],
                                    capture_output=True, text=True)
             self.assertEqual(alive.returncode, 0, alive.stdout + alive.stderr)
-        for kind in ("encoding", "size", "empty", "camera_info"):
+        for kind in ("encoding", "size", "empty", "camera_info", "unpaired"):
             self.assertGreater(stats.get(kind), 0, "no '%s' fault reported" % kind)
         self.assertEqual(stats.get("tracked"), offline_frames)
         self.check_save_map_names_what_it_cannot_write(work)

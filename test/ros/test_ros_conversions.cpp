@@ -203,6 +203,7 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   u.lines = {{5, {1, 1, 1}, {2, 2, 2}}};
   u.merged_points = {{11, 12}, {13, 14}};
   u.erased_keyframes = {2, 3};
+  u.erased_points = {7, 8, 9};
   u.whole_map = true;
   const MapUpdate v = fromMsg(throughWire(toMsg(u, "map")));
   EXPECT_EQ(v.stamp, u.stamp);
@@ -217,6 +218,7 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   EXPECT_EQ(v.merged_points[1].from, 13);
   EXPECT_EQ(v.merged_points[1].to, 14);
   EXPECT_EQ(v.erased_keyframes, (std::vector<long>{2, 3}));
+  EXPECT_EQ(v.erased_points, (std::vector<long>{7, 8, 9}));
   EXPECT_TRUE(v.whole_map);
 }
 

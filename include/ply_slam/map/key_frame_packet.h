@@ -74,6 +74,9 @@ struct MapUpdate {
   std::vector<Merge> merged_points;
   std::vector<long> erased_keyframes;  // culled as redundant
   bool whole_map = false;              // every keyframe and landmark (after a loop closure)
+  // Point landmarks that left the map since the last update (culled, merged, dropped by BA):
+  // without them a copy of the map keeps every point ever made.
+  std::vector<long> erased_points;
 };
 
 }  // namespace ply_slam

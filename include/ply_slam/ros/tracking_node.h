@@ -21,6 +21,7 @@
 
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
+#include "ply_slam/ros/unpaired_images.h"
 #include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/system/system.h"
 
@@ -49,6 +50,8 @@ class TrackingNode {
   void onRgb(const sensor_msgs::ImageConstPtr& rgb);
   void onDepth(const sensor_msgs::ImageConstPtr& depth);
   void flushStalledPair();
+  // An image the synchroniser dropped for want of a partner: counted and logged ("unpaired").
+  void reportUnpaired(const std::string& what, double stamp);
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
   bool onResendMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onSaveMap(SaveToPath::Request& request, SaveToPath::Response& response);
@@ -96,6 +99,7 @@ class TrackingNode {
   ros::WallTime newest_arrival_;
   ros::Time last_paired_rgb_stamp_, last_paired_depth_stamp_;
   ros::WallTimer flush_timer_;
+  UnpairedImages unpaired_rgb_{20}, unpaired_depth_{20};  // sized from the sync queue
 
   std::mutex info_mutex_;
   sensor_msgs::CameraInfoConstPtr camera_info_;

@@ -1,0 +1,52 @@
+#!/usr/bin/python3
+"""rostest: starts the nodes by hand with their parameters set here. With world_frame unlike
+map_frame and world_in_map [] (mapping.launch's defaults but for the world frame) mapping_node
+must run; with three numbers it must stop saying what ~world_in_map needs; tracking_node without
+a config must stop saying so. Both once died without a word: the exception's message was logged
+after ROS had shut its logging down."""
+import subprocess
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+
+import ros_test_support as support
+
+
+class NodeStart(unittest.TestCase):
+    def start(self, node, name, **params):
+        for key, value in params.items():
+            rospy.set_param("/node_start/%s/%s" % (name, key), value)
+        process = subprocess.Popen([support.tool(node), "__name:=" + name, "__ns:=/node_start"],
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.addCleanup(process.kill)  # a node that failed to stop is not left running
+        return process
+
+    def test_mapping_node_runs_without_world_in_map(self):
+        node = self.start("mapping_node", "no_placement", world_frame="ply_slam_world",
+                     world_in_map=[])
+        time.sleep(3)
+        alive = node.poll() is None
+        node.terminate()
+        output = node.communicate(timeout=20)[0]
+        self.assertTrue(alive, "mapping_node stopped: " + output)
+
+    def test_mapping_node_says_why_it_stops(self):
+        node = self.start("mapping_node", "bad_placement", world_frame="ply_slam_world",
+                     world_in_map=[1.0, 2.0, 3.0])
+        output = node.communicate(timeout=30)[0]
+        self.assertEqual(node.returncode, 1, output)
+        self.assertIn("world_in_map needs 6 numbers", output)
+
+    def test_tracking_node_says_why_it_stops(self):
+        node = self.start("tracking_node", "no_config")
+        output = node.communicate(timeout=30)[0]
+        self.assertEqual(node.returncode, 1, output)
+        self.assertIn("no such parameter", output)
+
+
+if __name__ == "__main__":
+    rospy.init_node("node_start_test")
+    rostest.rosrun("ply_slam", "node_start_test", NodeStart, sys.argv)
