@@ -2,7 +2,7 @@
 # Builds the package with AddressSanitizer + UndefinedBehaviorSanitizer into its own workspace,
 # build/ws_sanitize (build/ws stays the Release build), and runs the tests there.
 #   scripts/sanitize.sh [--fast] [--no-build]
-# --fast: only the gtests that take under half a minute (not SANITIZE_SLOW_TESTS): what CI runs.
+# --fast: only the gtests that take under half a minute (not SANITIZE_SLOW_TESTS); CI runs neither.
 # Any UB stops the test that hit it (-fno-sanitize-recover); third-party leaks are suppressed
 # by scripts/sanitizers/lsan.supp, UB findings in third-party headers by ubsan.supp.
 set -euo pipefail
