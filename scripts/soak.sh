@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak of both ROS nodes (issue #19): 10 000 synthetic frames with 1 % malformed messages.
+# Soak of both ROS nodes: 10 000 synthetic frames with 1 % malformed messages.
 #
 #   scripts/soak.sh [--no-build] [--frames N] [--render-frames N] [--scene S] [--period S]
 #

@@ -1,5 +1,5 @@
 // mapping_node's copy of the map (MapStore, fed the keyframe packets and map updates the tracker
-// publishes) must hold what the System's map holds: the soak of issue #19 found the copy keeping
+// publishes) must hold what the System's map holds: scripts/soak.sh found the copy keeping
 // every point ever made (212 378 culled ones over the 3 000-frame office) because map updates
 // did not say which points had left.
 #include <gtest/gtest.h>
