@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ply_slam/eval/trajectory_metrics.h"
+
 namespace ply_slam {
 
 double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
@@ -31,8 +33,7 @@ bool isTrueLoop(const GroundTruthView& a, const GroundTruthView& b, const Pinhol
   if (std::abs(a.stamp - b.stamp) <= params.min_gap_s) return false;
   const Eigen::Isometry3d T_ab = a.T_wc.inverse() * b.T_wc;
   if (T_ab.translation().norm() > params.max_distance_m) return false;
-  const double angle_deg = Eigen::AngleAxisd(T_ab.linear()).angle() * 180.0 / M_PI;
-  if (angle_deg > params.max_angle_deg) return false;
+  if (rotationAngleDeg(T_ab.linear()) > params.max_angle_deg) return false;
   return std::max(viewOverlap(a, b, camera, params), viewOverlap(b, a, camera, params)) >=
          params.min_overlap;
 }

@@ -73,9 +73,7 @@ RpeResult relativeErrors(const PosePairs& poses, const std::vector<std::pair<siz
     const Eigen::Isometry3d est_motion = poses.est[i]->T_wc.inverse() * poses.est[j]->T_wc;
     const Eigen::Isometry3d error = gt_motion.inverse() * est_motion;
     translation_errors.push_back(error.translation().norm());
-    // AngleAxis goes through a quaternion (atan2), accurate also for tiny angles where
-    // acos((trace - 1) / 2) loses all digits.
-    rotation_errors.push_back(Eigen::AngleAxisd(error.linear()).angle() * kDegreesPerRadian);
+    rotation_errors.push_back(rotationAngleDeg(error.linear()));
   }
   RpeResult result;
   result.translation = summarize(std::move(translation_errors));
@@ -84,6 +82,12 @@ RpeResult relativeErrors(const PosePairs& poses, const std::vector<std::pair<siz
 }
 
 }  // namespace
+
+double rotationAngleDeg(const Eigen::Matrix3d& R) {
+  // AngleAxis goes through a quaternion (atan2), accurate also for tiny angles where
+  // acos((trace - 1) / 2) loses all digits.
+  return Eigen::AngleAxisd(R).angle() * kDegreesPerRadian;
+}
 
 namespace {
 

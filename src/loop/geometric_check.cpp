@@ -78,9 +78,8 @@ bool reprojects(const Eigen::Vector3d& p, const Eigen::Vector2d& uv, const Pinho
 
 // The motion is small enough for the two cameras to stand at one place.
 bool isRevisit(const Eigen::Isometry3d& T, const LoopOptions& options) {
-  const double angle_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
   return T.translation().norm() <= options.max_revisit_distance_m &&
-         angle_deg <= options.max_revisit_angle_deg;
+         rotationAngleDeg(T.linear()) <= options.max_revisit_angle_deg;
 }
 
 }  // namespace

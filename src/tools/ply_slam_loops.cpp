@@ -24,6 +24,7 @@
 #include "ply_slam/eval/loop_ground_truth.h"
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/eval/pr_plot.h"
+#include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/run_arguments.h"
 #include "ply_slam/io/tum_sequence.h"
@@ -246,8 +247,6 @@ struct AcceptedLoop {
   double overlap = 0.0;  // the larger of the two views' overlaps (the definition's test)
 };
 
-double angleDeg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
-
 AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& candidate,
                           const GeometricCheckResult& check, const TruthTable& truth,
                           const PinholeCamera& small, const LoopGroundTruthParams& params) {
@@ -263,10 +262,10 @@ AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& c
   a.correct = truth.pairs.count({query.id, candidate.id}) > 0;
   const Eigen::Isometry3d T_qc = query.T_wc.inverse() * candidate.T_wc;  // ground truth
   a.gt_distance_m = T_qc.translation().norm();
-  a.gt_angle_deg = angleDeg(T_qc.linear());
+  a.gt_angle_deg = rotationAngleDeg(T_qc.linear());
   const Eigen::Isometry3d error = T_qc.inverse() * check.T_query_candidate;
   a.motion_error_m = error.translation().norm();
-  a.motion_error_deg = angleDeg(error.linear());
+  a.motion_error_deg = rotationAngleDeg(error.linear());
   return a;
 }
 
@@ -280,8 +279,7 @@ struct DecisionRow {
 
 // What the detector did over the whole sequence.
 struct LoopRun {
-  std::vector<ScoredDecision> decisions[kNumVariants];
-  std::vector<DecisionRow> rows;
+  std::vector<DecisionRow> rows;  // the curves' decisions
   std::vector<AcceptedLoop> accepted;
   long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_false = 0;
   long judged = 0, candidates = 0, covisible = 0;  // queries with a reference; sums over queries
@@ -308,10 +306,10 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
       const std::optional<Best> best = bestNormalised(d.scores, kVariants[v].score);
       if (!best) continue;
       const bool correct = truth.pairs.count({view.id, best->id}) > 0;
-      run.decisions[v].push_back({best->normalised, correct});
       const Eigen::Isometry3d T_qc = view.T_wc.inverse() * by_id.at(best->id)->T_wc;
       run.rows.push_back({view.id, best->id, v, best->normalised, T_qc.translation().norm(),
-                          angleDeg(T_qc.linear()), correct, truth.queries.count(view.id) > 0});
+                          rotationAngleDeg(T_qc.linear()), correct,
+                          truth.queries.count(view.id) > 0});
     }
     if (d.loop)
       run.accepted.push_back(
@@ -330,6 +328,14 @@ double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
+}
+
+// One variant's decisions, as the precision-recall curve takes them.
+std::vector<ScoredDecision> decisionsOf(const std::vector<DecisionRow>& rows, size_t variant) {
+  std::vector<ScoredDecision> out;
+  for (const DecisionRow& r : rows)
+    if (r.variant == variant) out.push_back({r.normalised, r.correct});
+  return out;
 }
 
 void writeDecisions(const fs::path& out, const std::vector<DecisionRow>& rows) {
@@ -505,8 +511,9 @@ int run(const Options& o) {
                                  scaledCamera(config.camera, kDepthFactor), o.truth);
   std::vector<std::pair<std::string, PrCurve>> curves;
   for (size_t v = 0; v < kNumVariants; ++v)
-    curves.emplace_back(kVariants[v].name,
-                        precisionRecall(run.decisions[v], static_cast<long>(truth.queries.size())));
+    curves.emplace_back(
+        kVariants[v].name,
+        precisionRecall(decisionsOf(run.rows, v), static_cast<long>(truth.queries.size())));
   const std::string title = fs::path(sequence.folder()).filename().string() + "  (" +
                             std::to_string(truth.queries.size()) + " queries with a true loop)";
   writeCurves(o.out, curves, title);

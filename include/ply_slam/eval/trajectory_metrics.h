@@ -22,6 +22,9 @@ struct RpeResult {
   ErrorStats rotation;     // degrees
 };
 
+// The angle of a rotation, degrees (through AngleAxis: exact also for tiny angles).
+double rotationAngleDeg(const Eigen::Matrix3d& R);
+
 // The rotation nearest to m in the Frobenius norm (SVD; a reflection is never returned).
 Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& m);
 
