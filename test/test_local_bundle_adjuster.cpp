@@ -2,12 +2,15 @@
 // exact observations, so the correction has a known answer.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/mapping/global_bundle_adjustment.h"
 #include "ply_slam/mapping/local_bundle_adjuster.h"
 #include "pose_test_helpers.h"
 
@@ -82,6 +85,83 @@ TEST_F(SmallMap, AnObservationFarOffIsRemoved) {
   EXPECT_EQ(keyframes_[2]->map_points[5], nullptr);
   // Huber bounds its pull during the solve that finds it (8.9 mm here).
   EXPECT_LT((map_.mapPoints()[5]->position - points_[5]).norm(), 0.02);
+}
+
+// The mapping thread solves without the map's lock: what the tracker or the mapper changed in
+// between must survive the write-back.
+TEST_F(SmallMap, WhatChangedDuringTheSolveIsRespected) {
+  keyframes_[2]->features.undistorted[5] += Eigen::Vector2d(40.0, 0.0);  // an outlier, as above
+  const LocalBundleAdjuster adjuster(config_);
+  BundleWindow window = adjuster.gatherLocal(*keyframes_[3]);
+  adjuster.solve(window);
+  // Meanwhile keypoint 5 of keyframe 2 was linked to another landmark, and point 7 was merged
+  // away (bad) with its position moved by whoever merged it.
+  map_.removeObservation(*keyframes_[2], 5);
+  auto other = map_.createMapPoint(points_[5], cv::Mat::zeros(1, 32, CV_8U), 2);
+  map_.addObservation(*keyframes_[2], 5, other);
+  const auto merged = map_.mapPoints()[7];
+  merged->bad = true;
+  merged->position = Eigen::Vector3d(9.0, 9.0, 9.0);
+  const LocalBundleAdjustmentStats stats = adjuster.apply(map_, window);
+  EXPECT_EQ(stats.outliers_removed, 0);  // the outlier's link is gone already
+  EXPECT_EQ(keyframes_[2]->map_points[5], other);
+  EXPECT_EQ(merged->position, Eigen::Vector3d(9.0, 9.0, 9.0));
+  // The rest is written back as usual.
+  EXPECT_LT((map_.mapPoints()[0]->position - points_[0]).norm(), 1e-4);
+}
+
+TEST_F(SmallMap, GatheringCopiesAndSolvingLeavesTheMapAlone) {
+  const Eigen::Isometry3d truth = keyframes_[3]->T_cw;
+  keyframes_[3]->T_cw = makePose({1, 0, 0}, 0.5, {0.01, -0.01, 0.02}) * truth;
+  const Eigen::Isometry3d moved = keyframes_[3]->T_cw;
+  const LocalBundleAdjuster adjuster(config_);
+  BundleWindow window = adjuster.gatherLocal(*keyframes_[3]);
+  adjuster.solve(window);
+  EXPECT_EQ(keyframes_[3]->T_cw.matrix(), moved.matrix());  // not written yet
+  adjuster.apply(map_, window);
+  EXPECT_LT((keyframes_[3]->T_cw.translation() - truth.translation()).norm(), 1e-4);
+}
+
+TEST_F(SmallMap, ASolveAskedToStopReportsIt) {
+  const LocalBundleAdjuster adjuster(config_);
+  BundleWindow window = adjuster.gatherAll(map_, 10);
+  std::atomic<bool> abandon{true};
+  EXPECT_FALSE(adjuster.solve(window, &abandon));
+  abandon = false;
+  EXPECT_TRUE(adjuster.solve(window, &abandon));
+}
+
+// The global BA after a loop runs beside the mapping side: a keyframe made meanwhile, and the
+// landmark it made, must move with the keyframe it hangs from.
+TEST_F(SmallMap, GlobalAdjustmentCarriesAlongWhatWasMadeMeanwhile) {
+  const Eigen::Isometry3d truth = keyframes_[3]->T_cw;
+  keyframes_[3]->T_cw = makePose({1, 0, 0}, 0.5, {0.01, -0.01, 0.02}) * truth;
+  const LocalBundleAdjuster adjuster(config_);
+  GlobalBundleAdjustment global(adjuster);
+  global.start(adjuster.gatherAll(map_, 10));
+  global.wait();
+  // Made while it was solving: 20 cm beside keyframe 3, with a landmark of its own.
+  auto made = std::make_shared<KeyFrame>();
+  made->T_cw = makePose({0, 1, 0}, 2.0, {-0.2, 0.0, 0.0}) * keyframes_[3]->T_cw;
+  made->parent = keyframes_[3].get();
+  map_.addKeyFrame(made);
+  const Eigen::Vector3d seen(0.1, 0.2, 3.0);  // in the new keyframe's frame
+  auto point = map_.createMapPoint(made->T_wc() * seen, cv::Mat::zeros(1, 32, CV_8U), made->id);
+  const Eigen::Isometry3d relative = keyframes_[3]->T_wc().inverse() * made->T_wc();
+  const Eigen::Isometry3d made_before = made->T_wc();
+
+  std::optional<BundleWindow> solved = global.takeSolved();
+  ASSERT_TRUE(solved);
+  const Eigen::Isometry3d moved = global.writeBack(map_, *solved);
+  EXPECT_LT((keyframes_[3]->T_cw.translation() - truth.translation()).norm(), 1e-4);
+  const Eigen::Isometry3d now = keyframes_[3]->T_wc().inverse() * made->T_wc();
+  EXPECT_TRUE(now.isApprox(relative, 1e-9));
+  EXPECT_LT((made->T_cw * point->position - seen).norm(), 1e-9);
+  EXPECT_TRUE((moved * made_before).isApprox(made->T_wc(), 1e-9));  // the newest's move
+  EXPECT_GT(moved.translation().norm(), 0.01);                      // the new keyframe did move
+  EXPECT_FALSE(global.takeSolved());                                // taken once
+  EXPECT_EQ(global.started(), 1);
+  EXPECT_EQ(global.abandoned(), 0);
 }
 
 }  // namespace

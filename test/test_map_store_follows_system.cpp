@@ -6,8 +6,10 @@
 
 #include <set>
 
+#include "default_vocabularies.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/loop/vocabulary_path.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/system/system.h"
 #include "shared_data.h"
@@ -15,24 +17,39 @@
 namespace ply_slam {
 namespace {
 
-TEST(MapStoreFollowsSystem, SamePointsAndKeyFramesAsTheMap) {
+// With the mapping side on its own thread too: its results come with later frames and the rest
+// with finishMapping, and nothing may be lost on the way.
+class MapStoreFollowsSystem : public testing::TestWithParam<MappingMode> {};
+
+TEST_P(MapStoreFollowsSystem, SamePointsAndKeyFramesAsTheMap) {
   const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
   PLY_SLAM_REQUIRE_SHARED(folder);
   SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
-  config.loop.enabled = false;  // culling is what matters here, not the vocabularies
+  // Culling is what this checks; place recognition is on so that the mapping thread runs all
+  // it runs (under ThreadSanitizer too: scripts/sanitize.sh --thread).
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
   config.dense.enabled = false;
-  System system(config);
+  System system(config, GetParam());
   const TumSequence sequence(folder);
   MapStore store;
-  size_t erased = 0;
+  size_t erased = 0, packets = 0, keyframes_made = 0;
+  auto take = [&](const std::vector<MappedKeyFrame>& mapped) {
+    for (const MappedKeyFrame& m : mapped) {
+      if (!m.packet) continue;  // a global BA after the last keyframe: no loop here
+      store.insert(*m.packet);
+      store.apply(*m.map_update);
+      erased += m.map_update->erased_points.size();
+      ++packets;
+    }
+  };
   for (size_t i = 0; i < sequence.size(); ++i) {
     const FrameResult r = system.process(sequence.load(i, config.camera.depth_factor));
-    if (r.keyframe_packet) store.insert(*r.keyframe_packet);
-    if (r.map_update) {
-      store.apply(*r.map_update);
-      erased += r.map_update->erased_points.size();
-    }
+    keyframes_made += r.tracking.new_keyframe != nullptr;
+    take(r.mapped);
   }
+  take(system.finishMapping());
+  EXPECT_EQ(packets, keyframes_made);
   EXPECT_GT(erased, 0u) << "no point was culled: the test proves nothing";
   std::set<long> in_map, in_store;
   for (const auto& p : system.map().mapPoints()) in_map.insert(p->id);
@@ -43,7 +60,16 @@ TEST(MapStoreFollowsSystem, SamePointsAndKeyFramesAsTheMap) {
   for (const auto& kf : system.map().keyFrames()) keyframes_in_map.insert(kf->id);
   for (const auto& [id, kf] : store.keyFrames()) keyframes_in_store.insert(id);
   EXPECT_EQ(keyframes_in_store, keyframes_in_map);
+  // The copy's poses are the map's.
+  for (const auto& kf : system.map().keyFrames())
+    EXPECT_TRUE(store.keyFrames().at(kf->id).T_wc.isApprox(kf->T_wc(), 1e-12)) << kf->id;
 }
+
+INSTANTIATE_TEST_SUITE_P(BothMappingModes, MapStoreFollowsSystem,
+                         testing::Values(MappingMode::kInline, MappingMode::kOwnThread),
+                         [](const testing::TestParamInfo<MappingMode>& info) {
+                           return info.param == MappingMode::kInline ? "Inline" : "OwnThread";
+                         });
 
 }  // namespace
 }  // namespace ply_slam

@@ -6,7 +6,9 @@ std::vector<long> KeyFrameCuller::cull(Map& map, const KeyFrame& newest,
                                        const std::set<long>& keep) const {
   std::vector<long> erased;
   for (KeyFrame* kf : newest.bestCovisible(newest.covisibility.size())) {
-    if (kf == &newest || keep.count(kf->id) || !redundant(*kf)) continue;
+    // Keyframes newer than `newest` are still waiting for the mapping side (it runs behind the
+    // tracker on its own thread): they are judged after their own turn.
+    if (kf->id >= newest.id || keep.count(kf->id) || !redundant(*kf)) continue;
     if (map.eraseKeyFrame(*kf, options_.min_point_observers)) erased.push_back(kf->id);
   }
   return erased;

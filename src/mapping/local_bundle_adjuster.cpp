@@ -3,11 +3,8 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <optional>
 #include <unordered_map>
-#include <unordered_set>
-
-#include "ply_slam/common/point_residual.h"
-#include "ply_slam/common/se3_params.h"
 
 namespace ply_slam {
 namespace {
@@ -25,128 +22,151 @@ struct ObservationCost {
 
 constexpr int kLocalIterations = 10;  // after each keyframe: the window is small and warm
 
-struct Observation {
-  KeyFrame* keyframe;
-  size_t index;
-  MapPoint* point;
-  PointResidual residual;
+// Stops the solver after the iteration during which `abandon` turned true.
+class AbandonCallback : public ceres::IterationCallback {
+ public:
+  explicit AbandonCallback(const std::atomic<bool>& abandon) : abandon_(abandon) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return abandon_ ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>& abandon_;
 };
 
 }  // namespace
 
 LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyframe) const {
-  // Local keyframes: the new one and its best covisible ones.
-  std::vector<KeyFrame*> keyframes{&keyframe};
-  for (KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
-    keyframes.push_back(kf);
-  return adjustWindow(map, keyframes, kLocalIterations);
+  BundleWindow window = gatherLocal(keyframe);
+  solve(window);
+  return apply(map, window);
 }
 
 LocalBundleAdjustmentStats LocalBundleAdjuster::adjustAll(Map& map, int max_iterations) const {
-  std::vector<KeyFrame*> keyframes;
-  for (const auto& kf : map.keyFrames()) keyframes.push_back(kf.get());
-  return adjustWindow(map, keyframes, max_iterations);
+  BundleWindow window = gatherAll(map, max_iterations);
+  solve(window);
+  return apply(map, window);
 }
 
-LocalBundleAdjustmentStats LocalBundleAdjuster::adjustWindow(
-    Map& map, const std::vector<KeyFrame*>& keyframes, int max_iterations) const {
-  const auto& t = config_.tracking;
-  LocalBundleAdjustmentStats stats;
-  // Containers are filled and walked in a fixed order so that the same input gives the same
-  // solution.
-  std::unordered_set<KeyFrame*> local(keyframes.begin(), keyframes.end());
-  std::unordered_map<KeyFrame*, size_t> pose_index;
-  std::vector<Se3Params> poses;
-  auto addPose = [&](KeyFrame* kf) {
-    if (pose_index.emplace(kf, poses.size()).second) poses.push_back(toParams(kf->T_cw));
-    return pose_index[kf];
+BundleWindow LocalBundleAdjuster::gatherLocal(KeyFrame& keyframe) const {
+  std::vector<KeyFrame*> keyframes{&keyframe};
+  for (KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
+    keyframes.push_back(kf);
+  return gather(keyframes, kLocalIterations);
+}
+
+BundleWindow LocalBundleAdjuster::gatherAll(const Map& map, int max_iterations) const {
+  const auto all = map.keyFrames();
+  std::vector<KeyFrame*> keyframes;
+  for (const auto& kf : all) keyframes.push_back(kf.get());
+  BundleWindow window = gather(keyframes, max_iterations);
+  window.keyframes = all;
+  return window;
+}
+
+BundleWindow LocalBundleAdjuster::gather(const std::vector<KeyFrame*>& keyframes,
+                                         int max_iterations) const {
+  // Filled in a fixed order so that the same map gives the same solution.
+  BundleWindow window;
+  window.max_iterations = max_iterations;
+  std::unordered_map<const KeyFrame*, size_t> pose_index;
+  auto addPose = [&](KeyFrame* kf, bool local) {
+    const auto [it, added] = pose_index.emplace(kf, window.poses.size());
+    if (added) window.poses.push_back({kf, toParams(kf->T_cw), local, !local || kf->id == 0});
+    return it->second;
   };
-  for (KeyFrame* kf : keyframes) addPose(kf);
+  for (KeyFrame* kf : keyframes) addPose(kf, true);
 
   // Their landmarks, and every observation of them (other keyframes enter fixed).
-  std::vector<MapPoint*> point_list;
-  std::unordered_map<MapPoint*, size_t> point_index;
-  std::vector<std::array<double, 3>> points;
+  std::unordered_map<const MapPoint*, size_t> point_index;
   for (KeyFrame* kf : keyframes) {
     for (const auto& p : kf->map_points) {
-      if (!p || p->bad || !point_index.emplace(p.get(), points.size()).second) continue;
-      point_list.push_back(p.get());
-      points.push_back({p->position.x(), p->position.y(), p->position.z()});
+      if (!p || p->bad || !point_index.emplace(p.get(), window.points.size()).second) continue;
+      window.landmarks.push_back(p);
+      window.points.push_back({p->position.x(), p->position.y(), p->position.z()});
     }
   }
-  std::vector<Observation> observations;
-  for (MapPoint* point : point_list) {
-    for (const auto& [kf, i] : point->observers) {
-      addPose(kf);
+  for (size_t k = 0; k < window.landmarks.size(); ++k) {
+    const MapPoint& point = *window.landmarks[k];
+    for (const auto& [kf, i] : point.observers) {
+      BundleWindow::Observation o;
+      o.pose = addPose(kf, false);
+      o.point = k;
+      o.index = i;
       const auto& f = kf->features;
-      PointResidual r;
-      r.u = f.undistorted[i].x();
-      r.v = f.undistorted[i].y();
-      r.pixel_sigma = f.scale(i);
+      o.residual.u = f.undistorted[i].x();
+      o.residual.v = f.undistorted[i].y();
+      o.residual.pixel_sigma = f.scale(i);
       if (f.hasDepth(i)) {
-        r.depth = f.depth[i];
-        r.depth_sigma = std::sqrt(config_.camera.depth_noise.varianceAgainstMap(r.depth));
+        o.residual.depth = f.depth[i];
+        o.residual.depth_sigma =
+            std::sqrt(config_.camera.depth_noise.varianceAgainstMap(f.depth[i]));
       }
-      observations.push_back({kf, i, point, r});
+      o.behind = (kf->T_cw * point.position).z() <= PointResidual::kMinDepth;
+      window.observations.push_back(o);
     }
   }
+  return window;
+}
 
-  ceres::Problem::Options problem_options;
-  ceres::Problem problem(problem_options);
-  for (auto& o : observations) {
-    // Behind the keyframe already: no constraint, and removed as an outlier below.
-    if ((o.keyframe->T_cw * o.point->position).z() <= PointResidual::kMinDepth) continue;
-    const int dims = o.residual.hasDepth() ? 3 : 2;
-    ceres::CostFunction* cost = dims == 3
+double LocalBundleAdjuster::chi2Bound(const PointResidual& residual) const {
+  const double chi2 = config_.tracking.chi2_outlier;
+  return residual.hasDepth() ? chi2 + 1.824 : chi2;
+}
+
+bool LocalBundleAdjuster::solve(BundleWindow& window, const std::atomic<bool>* abandon) const {
+  ceres::Problem problem;
+  for (auto& o : window.observations) {
+    if (o.behind) continue;  // removed as an outlier in apply
+    ceres::CostFunction* cost = o.residual.hasDepth()
                                     ? static_cast<ceres::CostFunction*>(
                                           new ceres::AutoDiffCostFunction<ObservationCost, 3, 6, 3>(
                                               new ObservationCost(o.residual, config_.camera)))
                                     : new ceres::AutoDiffCostFunction<ObservationCost, 2, 6, 3>(
                                           new ObservationCost(o.residual, config_.camera));
-    const double chi2 = dims == 3 ? t.chi2_outlier + 1.824 : t.chi2_outlier;
-    problem.AddResidualBlock(cost, new ceres::HuberLoss(std::sqrt(chi2)),
-                             poses[pose_index[o.keyframe]].data(),
-                             points[point_index[o.point]].data());
+    problem.AddResidualBlock(cost, new ceres::HuberLoss(std::sqrt(chi2Bound(o.residual))),
+                             window.poses[o.pose].params.data(), window.points[o.point].data());
   }
-  // Fixed: keyframes outside the local window, and the first keyframe (gauge freedom).
-  for (const auto& [kf, index] : pose_index) {
-    if (local.count(kf) && kf->id != 0) {
-      ++stats.keyframes;
-    } else {
-      ++stats.fixed_keyframes;
-      double* pose = poses[index].data();
-      if (problem.HasParameterBlock(pose)) problem.SetParameterBlockConstant(pose);
-    }
-  }
-  stats.points = static_cast<int>(points.size());
-  stats.observations = static_cast<int>(observations.size());
+  for (auto& pose : window.poses)
+    if (pose.fixed && problem.HasParameterBlock(pose.params.data()))
+      problem.SetParameterBlockConstant(pose.params.data());
 
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_SCHUR;
-  options.max_num_iterations = max_iterations;
+  options.max_num_iterations = window.max_iterations;
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;
+  std::optional<AbandonCallback> abandoned;
+  if (abandon) options.callbacks.push_back(&abandoned.emplace(*abandon));
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
+  return summary.termination_type != ceres::USER_FAILURE;
+}
 
-  // Drop observations that are still outliers; write back poses and landmarks.
-  for (auto& o : observations) {
+LocalBundleAdjustmentStats LocalBundleAdjuster::apply(Map& map, const BundleWindow& window) const {
+  LocalBundleAdjustmentStats stats;
+  for (const auto& pose : window.poses) ++(pose.fixed ? stats.fixed_keyframes : stats.keyframes);
+  stats.points = static_cast<int>(window.points.size());
+  stats.observations = static_cast<int>(window.observations.size());
+  // Observations that are still outliers leave the map, if still linked as they were.
+  for (const auto& o : window.observations) {
     double r[3] = {0.0, 0.0, 0.0};
-    const auto& pose = poses[pose_index[o.keyframe]];
-    const auto& position = points[point_index[o.point]];
-    o.residual.evaluate(config_.camera, pose.data(), position.data(), r);
-    const bool depth = o.residual.hasDepth();
-    const double e2 = r[0] * r[0] + r[1] * r[1] + (depth ? r[2] * r[2] : 0.0);
-    if (e2 > (depth ? t.chi2_outlier + 1.824 : t.chi2_outlier)) {
-      map.removeObservation(*o.keyframe, o.index);
-      ++stats.outliers_removed;
-    }
+    o.residual.evaluate(config_.camera, window.poses[o.pose].params.data(),
+                        window.points[o.point].data(), r);
+    const double e2 = r[0] * r[0] + r[1] * r[1] + (o.residual.hasDepth() ? r[2] * r[2] : 0.0);
+    if (!(e2 > chi2Bound(o.residual))) continue;
+    KeyFrame& kf = *window.poses[o.pose].keyframe;
+    if (kf.bad || kf.map_points[o.index] != window.landmarks[o.point]) continue;
+    map.removeObservation(kf, o.index);
+    ++stats.outliers_removed;
   }
-  for (const auto& [kf, index] : pose_index)
-    if (local.count(kf)) kf->T_cw = fromParams(poses[index].data());
-  for (size_t k = 0; k < point_list.size(); ++k) {
-    point_list[k]->position = Eigen::Vector3d(points[k][0], points[k][1], points[k][2]);
-    if (point_list[k]->observers.empty()) point_list[k]->bad = true;
+  for (const auto& pose : window.poses)
+    if (pose.local && !pose.keyframe->bad) pose.keyframe->T_cw = fromParams(pose.params.data());
+  for (size_t k = 0; k < window.landmarks.size(); ++k) {
+    MapPoint& point = *window.landmarks[k];
+    if (point.bad) continue;  // merged or culled meanwhile
+    point.position = Eigen::Vector3d(window.points[k][0], window.points[k][1], window.points[k][2]);
+    if (point.observers.empty()) point.bad = true;
   }
   return stats;
 }

@@ -30,9 +30,8 @@ LoopCloser::LoopCloser(LoopDetector detector, const SystemConfig& config,
               .filename()),
       map_(map) {}
 
-std::optional<LoopCorrection> LoopCloser::addKeyFrame(KeyFrame& keyframe,
-                                                      const KeyFramePacket& packet) {
-  detector_.addKeyFrame(builder_.build(packet));
+std::optional<LoopCorrection> LoopCloser::addKeyFrame(KeyFrame& keyframe, LoopKeyFrame described) {
+  detector_.addKeyFrame(std::move(described));
   syncCovisibility(keyframe);
   if (last_loop_keyframe_ >= 0 &&
       keyframe.id - last_loop_keyframe_ <= options_.min_keyframes_between)

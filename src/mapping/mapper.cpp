@@ -6,13 +6,15 @@
 
 namespace ply_slam {
 
-Mapper::Mapper(const SystemConfig& config, Map& map)
+Mapper::Mapper(const SystemConfig& config, Map& map, bool wait_for_global_ba)
     : config_(config),
       map_(map),
       fuser_(config),
       bundle_adjuster_(config),
       point_culler_(config.culling.points),
-      keyframe_culler_(config.culling.keyframes) {
+      keyframe_culler_(config.culling.keyframes),
+      wait_for_global_ba_(wait_for_global_ba),
+      global_ba_(bundle_adjuster_) {
   if (config_.loop.enabled)
     loop_closer_ = std::make_unique<LoopCloser>(
         LoopDetector::fromOptions(config_.camera, config_.loop), config_, fuser_, map_);
@@ -21,24 +23,35 @@ Mapper::Mapper(const SystemConfig& config, Map& map)
 KeyFrame* Mapper::spanningTreeParent(const KeyFrame& keyframe) const {
   const std::vector<KeyFrame*> best = keyframe.bestCovisible(1);
   if (!best.empty()) return best.front();
-  // A keyframe that shares nothing (after a loss) hangs off the one added before it.
-  const auto keyframes = map_.keyFrames();
-  return keyframes.size() >= 2 ? keyframes[keyframes.size() - 2].get() : nullptr;
+  // A keyframe that shares nothing (after a loss) hangs off the one made before it.
+  KeyFrame* before = nullptr;
+  for (const auto& kf : map_.keyFrames())
+    if (kf->id < keyframe.id) before = kf.get();
+  return before;
 }
 
 KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe,
-                                              const std::set<long>& keep) {
+                                              const KeepKeyFrames& keep) {
   KeyFrameInsertionStats stats;
   if (keyframe->id == 0) return stats;  // nothing to adjust against yet
+  std::unique_lock<std::mutex> lock(map_.updateMutex());
+  if (auto solved = global_ba_.takeSolved()) {
+    tell(applyGlobal(*solved));
+    stats.global_ba_applied = true;
+  }
   const std::vector<KeyFrame*> neighbours =
       keyframe->bestCovisible(config_.tracking.local_map_keyframes);
   fuser_.fuse(map_, *keyframe, neighbours);
   keyframe->parent = spanningTreeParent(*keyframe);
-  stats.bundle_adjustment = bundle_adjuster_.adjust(map_, *keyframe);
+  BundleWindow window = bundle_adjuster_.gatherLocal(*keyframe);
+  lock.unlock();
+  bundle_adjuster_.solve(window);
+  lock.lock();
+  stats.bundle_adjustment = bundle_adjuster_.apply(map_, window);
   // Fusion and adjustment changed who sees what: the neighbourhood is taken again.
   stats.culled_points = point_culler_.cull(
       map_, *keyframe, keyframe->bestCovisible(config_.tracking.local_map_keyframes));
-  stats.culled_keyframes = keyframe_culler_.cull(map_, *keyframe, keep);
+  stats.culled_keyframes = keyframe_culler_.cull(map_, *keyframe, keep ? keep() : std::set<long>{});
   if (loop_closer_)
     for (long id : stats.culled_keyframes) loop_closer_->removeKeyFrame(id);
   map_.removeBadPoints();
@@ -47,22 +60,65 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
 
 std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFramePacket& packet) {
   if (!loop_closer_) return std::nullopt;
-  std::optional<LoopCorrection> correction = loop_closer_->addKeyFrame(keyframe, packet);
+  LoopKeyFrame described = loop_closer_->describe(packet);
+  std::unique_lock<std::mutex> lock(map_.updateMutex());
+  std::optional<LoopCorrection> correction =
+      loop_closer_->addKeyFrame(keyframe, std::move(described));
   if (!correction) return correction;
+  tell(correction->world_correction);
+  const int iterations = config_.loop_correction.global_ba_iterations;
+  if (iterations <= 0) return correction;
   Stopwatch watch;
-  if (config_.loop_correction.global_ba_iterations > 0) {
-    const Eigen::Isometry3d before = keyframe.T_wc();
-    bundle_adjuster_.adjustAll(map_, config_.loop_correction.global_ba_iterations);
-    map_.removeBadPoints();
-    correction->world_correction =
-        keyframe.T_wc() * before.inverse() * correction->world_correction;
+  global_ba_.start(bundle_adjuster_.gatherAll(map_, iterations));
+  if (wait_for_global_ba_) {
+    lock.unlock();
+    global_ba_.wait();
+    lock.lock();
+    if (auto solved = global_ba_.takeSolved()) {
+      const Eigen::Isometry3d refined = applyGlobal(*solved);
+      tell(refined);
+      correction->world_correction = refined * correction->world_correction;
+    }
+    correction->global_ba_ms = watch.elapsedMs();
   }
-  correction->global_ba_ms = watch.elapsedMs();
-  correction->ms += correction->global_ba_ms;
+  correction->ms += watch.elapsedMs();
   return correction;
 }
 
+bool Mapper::finishGlobalBundleAdjustment() {
+  global_ba_.wait();
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  auto solved = global_ba_.takeSolved();
+  if (!solved) return false;
+  tell(applyGlobal(*solved));
+  return true;
+}
+
+bool Mapper::applySolvedGlobalBundleAdjustment() {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  auto solved = global_ba_.takeSolved();
+  if (!solved) return false;
+  tell(applyGlobal(*solved));
+  return true;
+}
+
+GlobalBundleAdjustmentCounts Mapper::globalBundleAdjustmentCounts() const {
+  return {global_ba_.started(), global_ba_applied_, global_ba_.abandoned(), global_ba_.solveMs()};
+}
+
+Eigen::Isometry3d Mapper::applyGlobal(const BundleWindow& window) {
+  const Eigen::Isometry3d moved = global_ba_.writeBack(map_, window);
+  map_.removeBadPoints();
+  ++global_ba_applied_;
+  return moved;
+}
+
+void Mapper::tell(const Eigen::Isometry3d& correction) const {
+  if (listener_) listener_(correction);
+}
+
 MapUpdate Mapper::wholeMap() const {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
   MapUpdate update;
   update.whole_map = true;
   for (const auto& kf : map_.keyFrames()) {
@@ -77,6 +133,7 @@ MapUpdate Mapper::wholeMap() const {
 }
 
 MapUpdate Mapper::localUpdate(const KeyFrame& keyframe) const {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
   MapUpdate update;
   update.stamp = keyframe.stamp;
   std::vector<const KeyFrame*> window{&keyframe};

@@ -45,6 +45,7 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
   map_folder_ = pnh_.param<std::string>("map", "");
   localisation_only_ = pnh_.param("localisation_only", true);
+  mapping_thread_ = pnh_.param("mapping_thread", true);
   // Said at the start, not at the first frame (the system is made then, from camera_info).
   const std::filesystem::path map_file = std::filesystem::path(map_folder_) / System::kMapFileName;
   if (!map_folder_.empty() && !std::filesystem::is_regular_file(map_file))
@@ -255,15 +256,26 @@ void TrackingNode::enqueue(Job job) {
 void TrackingNode::work() {
   while (true) {
     Job job;
+    bool idle = false;
     {
       std::unique_lock<std::mutex> lock(queue_mutex_);
-      queue_cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      // Between frames the mapping thread's results go out too: a loop closed after the last
+      // frame must not wait for the next one.
+      idle = !queue_cv_.wait_for(lock, kMappedPollPeriod,
+                                 [this] { return stopping_ || !queue_.empty(); });
       if (stopping_) return;  // shutting down: frames still waiting are not tracked
-      job = std::move(queue_.front());
-      queue_.pop_front();
+      if (!idle) {
+        job = std::move(queue_.front());
+        queue_.pop_front();
+      }
     }
     try {
-      if (job.task)
+      if (idle) {
+        if (!system_) continue;
+        const std::vector<MappedKeyFrame> mapped = system_->takeMapped();
+        if (mapped.empty() && system_->mappingBacklog() == mapping_backlog_) continue;
+        publishMapped(mapped);
+      } else if (job.task)
         job.task();
       else if (job.rgb)
         track(*job.rgb, *job.depth);
@@ -294,7 +306,8 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
                     << " cy " << config.camera.cy);
   }
   if (!segmenter_) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
-  system_ = std::make_unique<System>(config);
+  system_ = std::make_unique<System>(
+      config, mapping_thread_ ? MappingMode::kOwnThread : MappingMode::kInline);
   if (!map_folder_.empty()) loadMap();
 }
 
@@ -365,17 +378,7 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
       path_pub_.publish(path_);
     }
   }
-  if (result.keyframe_packet) {
-    KeyFrameMsg msg = toMsg(*result.keyframe_packet, world_frame_);
-    msg.sequence = keyframes_++;
-    keyframe_pub_.publish(msg);
-  }
-  if (result.map_update) {
-    MapUpdateMsg msg = toMsg(*result.map_update, world_frame_);
-    msg.sequence = updates_++;
-    map_update_pub_.publish(msg);
-    loops_ += result.loop_correction != nullptr;
-  }
+  publishMapped(result.mapped);
   if (!publish_images_) return;
   std_msgs::Header image_header = rgb.header;
   if (tracking_image_pub_.getNumSubscribers() > 0)
@@ -387,6 +390,22 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
         cv_bridge::CvImage(image_header, "bgr8",
                            drawSegmentationImage(images.rgb, instances, result.dynamic_instances))
             .toImageMsg());
+}
+
+// The mapping side's keyframes and map updates, in order (the worker's thread only: it numbers
+// them).
+void TrackingNode::publishMapped(const std::vector<MappedKeyFrame>& mapped) {
+  for (const MappedKeyFrame& m : mapped) {
+    if (m.packet) {
+      KeyFrameMsg keyframe = toMsg(*m.packet, world_frame_);
+      keyframe.sequence = keyframes_++;
+      keyframe_pub_.publish(keyframe);
+    }
+    MapUpdateMsg update = toMsg(*m.map_update, world_frame_);
+    update.sequence = updates_++;
+    map_update_pub_.publish(update);
+    loops_ += m.loop_correction != nullptr;
+  }
 }
 
 void TrackingNode::publishSnapshot() {
@@ -402,12 +421,14 @@ void TrackingNode::publishSnapshot() {
 }
 
 void TrackingNode::publishStats() {
+  mapping_backlog_ = system_ ? system_->mappingBacklog() : 0;
   std::ostringstream s;
   s << "rgb_received=" << rgb_received_ << " depth_received=" << depth_received_
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
-    << " loops=" << loops_ << " dropped_behind=" << behind_dropped_
-    << " skipped_bad=" << bad_input_.total() << " median_ms=" << upperMedian(total_ms_, 0.0);
+    << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
+    << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
+    << " median_ms=" << upperMedian(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

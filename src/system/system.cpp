@@ -20,13 +20,13 @@ constexpr size_t kRelocalisationCandidates = 10;
 
 }  // namespace
 
-System::System(const SystemConfig& config)
+System::System(const SystemConfig& config, MappingMode mode)
     : config_(config),
       extractor_(config.orb),
       rejector_(config.dynamic, config.camera),
       memory_(config.dynamic.carry_frames),
       tracker_(config_, map_, extractor_.scales()),
-      mapper_(config_, map_) {
+      mapper_(config_, map_, mode == MappingMode::kInline) {
   if (config_.lines.enabled) {
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
@@ -35,6 +35,12 @@ System::System(const SystemConfig& config)
     tracker_.setPlaceCandidates([this](const Frame& frame) {
       return mapper_.recognise(frame.features.descriptors, kRelocalisationCandidates);
     });
+  // The mapper holds the map's lock when it tells: the tracker is between two frames.
+  mapper_.setCorrectionListener(
+      [this](const Eigen::Isometry3d& correction) { tracker_.applyCorrection(correction); });
+  if (mode == MappingMode::kOwnThread)
+    mapping_thread_ =
+        std::make_unique<MappingThread>([this](const MappingJob& job) { return mapKeyFrame(job); });
 }
 
 void System::validate(const RgbdImages& images) const {
@@ -111,41 +117,98 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
     frame.setLines(std::move(frame_lines));
   }
 
+  // Tracking reads and extends the map: under its lock, taken after the frame's features.
   Stopwatch tracking;
+  std::unique_lock<std::mutex> lock(map_.updateMutex());
+  result.timing.map_wait_ms = tracking.elapsedMs();
+  if (mapping_thread_) result.mapped = mapping_thread_->takeFinished();
   result.tracking = tracker_.track(frame);
   result.timing.tracking_ms = tracking.elapsedMs();
   result.timing.total_ms = total.elapsedMs();
   markInliers(frame, result.features);
 
-  if (result.tracking.new_keyframe) map(images, judged, result);
-  if (result.tracking.state == TrackingState::kOk) {
-    const auto reference = tracker_.referenceKeyFrame();
-    anchors_.emplace(reference->id, reference);
-    tracked_.add(images.stamp, reference->id, reference->T_cw, result.tracking.T_cw);
+  if (result.tracking.new_keyframe) {
+    MappingJob job{result.tracking.new_keyframe, images, judged, result.dynamic_instances,
+                   result.dynamic_mask};
+    if (mapping_thread_) {
+      mapping_thread_->push(job.detached());
+    } else {
+      lock.unlock();
+      result.mapped.push_back(mapKeyFrame(job));
+      lock.lock();
+      // The frame was tracked before its keyframe closed the loop: it moves with the map.
+      if (const auto& loop = result.mapped.back().loop_correction)
+        result.tracking.T_cw = result.tracking.T_cw * loop->world_correction.inverse();
+    }
   }
+  for (const auto& mapped : result.mapped) result.timing.mapping_ms += mapped.ms;
+  rememberTracked(result);
   return result;
 }
 
-void System::map(const RgbdImages& images, const std::vector<Instance>& judged,
-                 FrameResult& result) {
+void System::rememberTracked(const FrameResult& result) {
+  if (result.tracking.state != TrackingState::kOk) return;
+  const auto reference = tracker_.referenceKeyFrame();
+  anchors_.emplace(reference->id, reference);
+  tracked_.add(result.stamp, reference->id, reference->T_cw, result.tracking.T_cw);
+}
+
+MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
   Stopwatch mapping;
-  KeyFrame& keyframe = *result.tracking.new_keyframe;
-  const KeyFrameInsertionStats mapped =
-      mapper_.insertKeyFrame(result.tracking.new_keyframe, {tracker_.referenceKeyFrame()->id});
-  result.culled_points = mapped.culled_points;
-  reanchorTrackedFrames(mapped.culled_keyframes);
-  result.keyframe_packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
-      keyframe, config_.camera, images, judged, result.dynamic_instances, result.dynamic_mask));
-  if (auto correction = mapper_.closeLoop(keyframe, *result.keyframe_packet)) {
-    tracker_.applyCorrection(correction->world_correction);
-    result.tracking.T_cw = result.tracking.T_cw * correction->world_correction.inverse();
-    result.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
+  MappedKeyFrame out;
+  if (!job.keyframe) {  // no keyframe: a global bundle adjustment that ended to write back
+    mapper_.applySolvedGlobalBundleAdjustment();
+    out.map_update = std::make_shared<const MapUpdate>(mapper_.wholeMap());
+    out.ms = mapping.elapsedMs();
+    return out;
   }
-  MapUpdate update = result.loop_correction ? mapper_.wholeMap() : mapper_.localUpdate(keyframe);
+  KeyFrame& keyframe = *job.keyframe;
+  const KeyFrameInsertionStats mapped = mapper_.insertKeyFrame(
+      job.keyframe, [this] { return std::set<long>{tracker_.referenceKeyFrame()->id}; });
+  out.culled_points = mapped.culled_points;
+  {
+    std::lock_guard<std::mutex> lock(map_.updateMutex());
+    reanchorTrackedFrames(mapped.culled_keyframes);
+    out.packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
+        keyframe, config_.camera, job.images, job.instances, job.dynamic_ids, job.dynamic_mask));
+  }
+  if (auto correction = mapper_.closeLoop(keyframe, *out.packet))
+    out.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
+  MapUpdate update = out.loop_correction || mapped.global_ba_applied
+                         ? mapper_.wholeMap()
+                         : mapper_.localUpdate(keyframe);
   update.erased_keyframes = mapped.culled_keyframes;
   update.erased_points = map_.takeRemovedPoints();
-  result.map_update = std::make_shared<const MapUpdate>(std::move(update));
-  result.timing.mapping_ms = mapping.elapsedMs();
+  out.map_update = std::make_shared<const MapUpdate>(std::move(update));
+  out.ms = mapping.elapsedMs();
+  return out;
+}
+
+std::vector<MappedKeyFrame> System::finishMapping() {
+  if (!mapping_thread_) return {};
+  mapping_thread_->waitIdle();
+  std::vector<MappedKeyFrame> mapped = mapping_thread_->takeFinished();
+  if (mapper_.finishGlobalBundleAdjustment()) {
+    MappedKeyFrame global;  // no keyframe: the whole map moved
+    global.map_update = std::make_shared<const MapUpdate>(mapper_.wholeMap());
+    mapped.push_back(std::move(global));
+  }
+  return mapped;
+}
+
+std::vector<MappedKeyFrame> System::takeMapped() {
+  if (!mapping_thread_) return {};
+  // Idle, with a global bundle adjustment ended after the last keyframe: the mapping thread
+  // writes it back now rather than at the next keyframe.
+  if (mapping_thread_->backlog() == 0 && mapper_.globalBundleAdjustmentSolved())
+    mapping_thread_->push(MappingJob{});
+  return mapping_thread_->takeFinished();
+}
+
+size_t System::mappingBacklog() const { return mapping_thread_ ? mapping_thread_->backlog() : 0; }
+
+size_t System::longestMappingQueue() const {
+  return mapping_thread_ ? mapping_thread_->longestQueue() : 0;
 }
 
 void System::rejectDynamic(FrameFeatures& features, double stamp,
@@ -199,9 +262,13 @@ AnchoredTrajectory::KeyFramePoses System::anchorPoses() const {
   return poses;
 }
 
-Trajectory System::cameraTrajectory() const { return tracked_.trajectory(anchorPoses()); }
+Trajectory System::cameraTrajectory() const {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  return tracked_.trajectory(anchorPoses());
+}
 
 std::vector<KeyFramePacket> System::sparseKeyFramePackets() const {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
   std::vector<KeyFramePacket> packets;
   for (const auto& kf : map_.keyFrames())
     packets.push_back(makeSparseKeyFramePacket(*kf, config_.camera));
@@ -225,6 +292,7 @@ MapFileSetup System::mapFileSetup() const {
 
 void System::saveMap(const std::string& folder) const {
   std::filesystem::create_directories(folder);
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
   MapFileWriter::write((std::filesystem::path(folder) / kMapFileName).string(), mapFileSetup(),
                        map_, mapper_.places());
 }
@@ -247,6 +315,7 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
 }
 
 Trajectory System::keyFrameTrajectory() const {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
   Trajectory trajectory;
   for (const auto& kf : map_.keyFrames()) trajectory.push_back({kf->stamp, kf->T_wc()});
   return trajectory;

@@ -476,7 +476,8 @@ void track(const Options& o, const SystemConfig& config, const TumSequence& sequ
     const FrameResult r = system.process(images, instances);
     ++info.frames;
     info.lost += r.tracking.state != TrackingState::kOk;
-    if (r.keyframe_packet) collector.add(*r.keyframe_packet);
+    for (const MappedKeyFrame& mapped : r.mapped)
+      if (mapped.packet) collector.add(*mapped.packet);
   }
 }
 

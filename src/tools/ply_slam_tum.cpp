@@ -57,6 +57,7 @@ struct Options : RunArguments {
   bool no_loop = false;            // overrides loop.enabled of the config
   std::string dynamic;             // overrides dynamic.mode of the config
   bool live = false;               // frames at their own pace, segmentation beside
+  bool realtime = false;           // the mapping side on a thread of its own
   long save_images = 0;            // every N frames a tracking image; 0 = none
   std::string ground_truth_masks;  // walker masks: feature classification, ghost count
   std::string save_map;            // folder the map is saved into at the end; "" = none
@@ -68,7 +69,8 @@ struct Options : RunArguments {
 const char* const kUsage =
     "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
     " [--segmenter none|masks|yolo] [--model ONNX --input WxH]"
-    " [--dynamic off|geometric|semantic|full] [--live] [--save-images N] [--max-frames N]"
+    " [--dynamic off|geometric|semantic|full] [--live] [--realtime] [--save-images N]"
+    " [--max-frames N]"
     " [--no-lines] [--no-loop] [--ground-truth-masks DIR] [--save-map DIR]"
     " [--map DIR [--localisation-only true|false]]\n"
     "  --no-lines: points only, whatever lines.enabled says\n"
@@ -76,6 +78,10 @@ const char* const kUsage =
     "  --dynamic: how dynamic features are rejected (default: the config's dynamic.mode)\n"
     "  --live: play the frames at their recorded rate and segment on a second thread, as\n"
     "          the ROS node does (results then depend on timing)\n"
+    "  --realtime: the mapping side (local BA, culling, loop closure) on a thread of its own\n"
+    "          beside tracking, as tracking_node runs it by default (results then depend on\n"
+    "          timing); without it the tracker waits for the mapping side at each keyframe and\n"
+    "          runs repeat bit for bit\n"
     "  --save-images N: write every N-th tracking image to DIR/images\n"
     "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n"
     "  --segmenter yolo: YOLOv8-seg, model from the config's segmentation section or"
@@ -142,7 +148,7 @@ Options parse(int argc, char** argv) {
   Options o;
   CommandLine line;
   line.usage_text = kUsage;
-  line.flags = {"--no-lines", "--live", "--no-loop"};
+  line.flags = {"--no-lines", "--live", "--realtime", "--no-loop"};
   line.options = {"--sequence",
                   "--config",
                   "--out",
@@ -157,7 +163,10 @@ Options parse(int argc, char** argv) {
                   "--map",
                   "--localisation-only"};
   line.on_flag = [&](const std::string& flag) {
-    (flag == "--live" ? o.live : flag == "--no-loop" ? o.no_loop : o.no_lines) = true;
+    (flag == "--live"       ? o.live
+     : flag == "--realtime" ? o.realtime
+     : flag == "--no-loop"  ? o.no_loop
+                            : o.no_lines) = true;
   };
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
@@ -355,6 +364,7 @@ Json loopsJson(const System& system,
                const std::vector<std::shared_ptr<const LoopCorrection>>& corrections) {
   const LoopClosureCounts* counts = system.loopCounts();
   if (!counts) return nullptr;
+  const GlobalBundleAdjustmentCounts global = system.globalBundleAdjustmentCounts();
   double pose_graph_ms = 0.0, global_ba_ms = 0.0;
   Json each = Json::array();
   for (const auto& c : corrections) {
@@ -379,6 +389,11 @@ Json loopsJson(const System& system,
           {"corrected", counts->corrected},
           {"pose_graph_ms", rounded(pose_graph_ms)},
           {"global_ba_ms", rounded(global_ba_ms)},
+          {"global_ba",
+           {{"started", global.started},
+            {"applied", global.applied},
+            {"abandoned", global.abandoned},
+            {"solve_ms", rounded(global.solve_ms)}}},
           {"corrections", each}};
 }
 
@@ -395,18 +410,20 @@ struct RunCounts {
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     keyframes_created += r.tracking.new_keyframe != nullptr;
-    if (r.map_update) keyframes_culled += static_cast<long>(r.map_update->erased_keyframes.size());
-    points_culled += r.culled_points;
     total_ms.push_back(r.timing.total_ms);
     lines_ms.push_back(r.timing.lines_ms);
     line_inliers += r.tracking.line_inliers;
     dynamic_features += r.dynamic_features;
   }
+  void add(const MappedKeyFrame& mapped) {
+    keyframes_culled += static_cast<long>(mapped.map_update->erased_keyframes.size());
+    points_culled += mapped.culled_points;
+  }
 };
 
 const char* const kTimingHeader =
     "frame,stamp,state,method,inliers,line_inliers,keyframe,features_ms,lines_ms,tracking_ms,"
-    "mapping_ms,total_ms,rss_mb,keyframes,map_points\n";
+    "mapping_ms,total_ms,rss_mb,keyframes,map_points,map_wait_ms\n";
 
 void writeTimingRow(std::ostream& timing, const FrameResult& r, const System& system) {
   timing << r.frame_id << ',' << std::fixed << std::setprecision(6) << r.stamp << ','
@@ -415,7 +432,8 @@ void writeTimingRow(std::ostream& timing, const FrameResult& r, const System& sy
          << std::setprecision(3) << r.timing.features_ms << ',' << r.timing.lines_ms << ','
          << r.timing.tracking_ms << ',' << r.timing.mapping_ms << ',' << r.timing.total_ms << ','
          << std::setprecision(1) << currentRssMb() << ',' << system.map().numKeyFrames() << ','
-         << system.map().numMapPoints() << '\n';
+         << system.map().numMapPoints() << ',' << std::setprecision(3) << r.timing.map_wait_ms
+         << '\n';
 }
 
 // ATE and RPE against the sequence's ground truth; a ground truth that does not fit the run
@@ -538,7 +556,7 @@ int run(const Options& options) {
       (options.ground_truth_masks.empty() || options.ground_truth_masks == sequence.folder());
   FeatureClassification classification;
   if (options.save_images > 0) fs::create_directories(out / "images");
-  System system(config);
+  System system(config, options.realtime ? MappingMode::kOwnThread : MappingMode::kInline);
   Json map_json = Json::object();
   if (!options.map.empty()) map_json = loadSavedMap(system, options);
   std::unique_ptr<DenseMappingWorker> dense;
@@ -556,6 +574,21 @@ int run(const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   double first_stamp = -1.0;
   std::vector<std::shared_ptr<const LoopCorrection>> corrections;
+  // The people's pixels of each keyframe's frame, until the mapping side hands its packet on.
+  std::map<long, cv::Mat> keyframe_walkers;
+  auto takeMapped = [&](const std::vector<MappedKeyFrame>& mapped) {
+    for (const MappedKeyFrame& m : mapped) {
+      counts.add(m);
+      if (m.loop_correction) corrections.push_back(m.loop_correction);
+      if (!dense) continue;
+      if (m.packet) {
+        const auto walkers = keyframe_walkers.find(m.packet->frame_id);
+        dense->push(m.packet, walkers != keyframe_walkers.end() ? walkers->second : cv::Mat());
+        if (walkers != keyframe_walkers.end()) keyframe_walkers.erase(walkers);
+      }
+      dense->follow(*m.map_update);
+    }
+  };
   for (size_t i = 0; i < n && failure.empty(); ++i) {
     FrameResult r;
     std::vector<Instance> instances;
@@ -581,9 +614,8 @@ int run(const Options& options) {
               ? walkerPixels(instances, images.rgb.size(), config.dynamic)
               : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
       if (walker_masks) classification.add(r.features, walkers);
-      if (dense && r.keyframe_packet) dense->push(r.keyframe_packet, walkers);
-      if (dense && r.map_update) dense->follow(*r.map_update);
-      if (r.loop_correction) corrections.push_back(r.loop_correction);
+      if (dense && r.tracking.new_keyframe) keyframe_walkers[r.frame_id] = walkers;
+      takeMapped(r.mapped);
     } catch (const std::exception& e) {
       failure = e.what();
       break;
@@ -598,6 +630,11 @@ int run(const Options& options) {
     }
     counts.add(r);
     writeTimingRow(timing, r, system);
+  }
+  try {
+    takeMapped(system.finishMapping());
+  } catch (const std::exception& e) {
+    if (failure.empty()) failure = e.what();
   }
   outputs.attempt([&] { writeTextFileAtomically((out / "timing.csv").string(), timing.str()); });
 
@@ -622,6 +659,8 @@ int run(const Options& options) {
   json["tracking_ms_p95"] = rounded(percentile(counts.total_ms, 0.95));
   json["peak_rss_mb"] = nullptr;  // set once the dense maps and the plot are done
   json["loops"] = loopsJson(system, corrections);
+  json["mapping"] = {{"own_thread", options.realtime},
+                     {"longest_queue", system.longestMappingQueue()}};
 
   const Evaluation evaluation = evaluate(sequence, trajectory);
   json.update(evaluation.fields);

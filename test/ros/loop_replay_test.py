@@ -9,6 +9,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 import unittest
 
 import rospy
@@ -59,6 +60,10 @@ class LoopReplay(unittest.TestCase):
         subprocess.run(["rosbag", "play", "--quiet", "--delay=1", "--rate=%g" % rate, bag],
                        check=True)
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 300)
+        # The mapping side runs on its own thread (tracking_node's default): the last
+        # keyframes, and a loop they close, come after the last frame.
+        stats.wait_until(lambda s: s.get("mapping_backlog") == 0, 120)
+        time.sleep(1.0)  # the updates it sent last, to mapping_node
 
         saved = os.path.join(work, "saved.txt")
         message = support.save_trajectory(saved)

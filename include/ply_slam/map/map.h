@@ -10,11 +10,15 @@
 
 namespace ply_slam {
 
-// The sparse map: keyframes, point and line landmarks. The containers are guarded by a mutex;
-// the keyframes and landmarks in them are not: tracking and the mapping side run one after the
-// other on one thread (System), so nothing else touches them meanwhile.
+// The sparse map: keyframes, point and line landmarks. The containers are guarded by their own
+// mutex. The keyframes and landmarks in them are guarded by updateMutex(): whoever reads or
+// changes them while another thread may hold it (the tracker for one frame, the mapping side
+// for each of its steps; see README's "Threads and locks"). Ceres solves on copies without it.
 class Map {
  public:
+  // The one lock over keyframes' and landmarks' contents (poses, positions, links). Never taken
+  // by Map's own methods, so a holder may call them.
+  std::mutex& updateMutex() const { return update_mutex_; }
   std::shared_ptr<KeyFrame> addKeyFrame(std::shared_ptr<KeyFrame> keyframe);
   std::shared_ptr<MapPoint> createMapPoint(const Eigen::Vector3d& position,
                                            const cv::Mat& descriptor, long keyframe_id);
@@ -67,6 +71,7 @@ class Map {
   void reparentChildrenLocked(KeyFrame& keyframe);
 
   mutable std::mutex mutex_;
+  mutable std::mutex update_mutex_;
   std::vector<std::shared_ptr<KeyFrame>> keyframes_;
   std::vector<std::shared_ptr<MapPoint>> points_;
   std::vector<std::shared_ptr<MapLine>> lines_;

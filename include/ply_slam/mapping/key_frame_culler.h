@@ -16,9 +16,9 @@ class KeyFrameCuller {
  public:
   explicit KeyFrameCuller(const KeyFrameCullerOptions& options = {}) : options_(options) {}
 
-  // Looks at `newest`'s covisible keyframes, most shared first; never erases `newest`, the
-  // first keyframe or a keyframe in `keep` (e.g. the tracker's reference keyframe). Returns
-  // the ids erased.
+  // Looks at `newest`'s covisible keyframes, most shared first; never erases `newest`, one
+  // made after it, the first keyframe or a keyframe in `keep` (e.g. the tracker's reference
+  // keyframe). Returns the ids erased.
   std::vector<long> cull(Map& map, const KeyFrame& newest, const std::set<long>& keep) const;
   // The keyframe's landmarks are at least options.redundancy redundant (none: not redundant).
   bool redundant(const KeyFrame& keyframe) const;

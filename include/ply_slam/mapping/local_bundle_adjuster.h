@@ -1,10 +1,12 @@
 #pragma once
 
+#include <atomic>
 #include <memory>
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/mapping/bundle_window.h"
 
 namespace ply_slam {
 
@@ -19,6 +21,10 @@ struct LocalBundleAdjustmentStats {
 // Ceres bundle adjustment around a new keyframe: its covisible keyframes' poses and every
 // landmark they see, with reprojection + depth residuals (the same as pose optimisation),
 // Huber, and removal of the observations that remain outliers.
+//
+// In three steps, so that the map's lock is held only to read and to write: gather* and apply
+// with Map::updateMutex() held, solve without. adjust/adjustAll do all three for a caller that
+// holds the lock throughout.
 class LocalBundleAdjuster {
  public:
   LocalBundleAdjuster(const SystemConfig& config) : config_(config) {}
@@ -28,11 +34,22 @@ class LocalBundleAdjuster {
   // fixed.
   LocalBundleAdjustmentStats adjustAll(Map& map, int max_iterations) const;
 
+  // The window around `keyframe`: it and its best covisible keyframes.
+  BundleWindow gatherLocal(KeyFrame& keyframe) const;
+  BundleWindow gatherAll(const Map& map, int max_iterations) const;
+  // Changes only the window's numbers. Returns false, the numbers then half-solved, when
+  // `abandon` turned true meanwhile.
+  bool solve(BundleWindow& window, const std::atomic<bool>* abandon = nullptr) const;
+  // Unlinks the observations that remain outliers and writes the poses and positions back.
+  // What changed in the map since gathering is respected: an observation no longer linked is
+  // left alone, a landmark turned bad keeps its place.
+  LocalBundleAdjustmentStats apply(Map& map, const BundleWindow& window) const;
+
  private:
-  // Adjusts the keyframes' poses and every landmark they see; other keyframes that see those
-  // landmarks, and the first keyframe, stay fixed.
-  LocalBundleAdjustmentStats adjustWindow(Map& map, const std::vector<KeyFrame*>& keyframes,
-                                          int max_iterations) const;
+  // The keyframes' poses and every landmark they see; other keyframes that see those
+  // landmarks, and the first keyframe, enter fixed.
+  BundleWindow gather(const std::vector<KeyFrame*>& keyframes, int max_iterations) const;
+  double chi2Bound(const PointResidual& residual) const;
 
   const SystemConfig config_;
 };

@@ -27,9 +27,12 @@ class LoopCloser {
   LoopCloser(LoopDetector detector, const SystemConfig& config, const LandmarkFuser& fuser,
              Map& map);
 
+  // What the database keeps of a keyframe, from its packet alone (its lines are described
+  // here: the slow part, which needs nothing of the map).
+  LoopKeyFrame describe(const KeyFramePacket& packet) const { return builder_.build(packet); }
   // After the keyframe was fused and adjusted: database, query, correction. Returns the
   // correction when a loop was closed.
-  std::optional<LoopCorrection> addKeyFrame(KeyFrame& keyframe, const KeyFramePacket& packet);
+  std::optional<LoopCorrection> addKeyFrame(KeyFrame& keyframe, LoopKeyFrame described);
   // A keyframe the mapper culled leaves the database.
   void removeKeyFrame(long id) { detector_.removeKeyFrame(id); }
   // Relocalisation: keyframes that look like the descriptors, most similar first.

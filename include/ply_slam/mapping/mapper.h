@@ -1,6 +1,9 @@
 #pragma once
 
+#include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <vector>
@@ -9,6 +12,7 @@
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/map/map_file_contents.h"
+#include "ply_slam/mapping/global_bundle_adjustment.h"
 #include "ply_slam/mapping/key_frame_culler.h"
 #include "ply_slam/mapping/landmark_fuser.h"
 #include "ply_slam/mapping/local_bundle_adjuster.h"
@@ -24,24 +28,56 @@ struct KeyFrameInsertionStats {
   // drop them too.
   std::vector<long> culled_keyframes;
   int culled_points = 0;  // points retired as unreliable or unconfirmed (not merges)
+  // A global bundle adjustment solved meanwhile was written back first: the whole map moved.
+  bool global_ba_applied = false;
+};
+
+// The global bundle adjustments after loops (GlobalBundleAdjustment).
+struct GlobalBundleAdjustmentCounts {
+  int started = 0;
+  int applied = 0;
+  int abandoned = 0;  // a newer loop came first
+  double solve_ms = 0.0;
 };
 
 // The mapping side: joins each new keyframe's landmarks with its neighbours', refines the map
 // around it (local bundle adjustment), retires landmarks that proved unreliable and keyframes
 // that became redundant and, with loop.enabled, recognises places and closes loops.
+//
+// Threads: insertKeyFrame, closeLoop, wholeMap and localUpdate are called from one thread (the
+// mapping side's, which may be the tracker's) and take map.updateMutex() themselves, step by
+// step; Ceres solves and line description run without it. recognise, places and
+// addLoadedKeyFrames expect the caller to hold it (or no other thread to run).
 class Mapper {
  public:
-  // Loads the vocabularies when loop.enabled (throws std::runtime_error naming a bad file).
-  Mapper(const SystemConfig& config, Map& map);
+  // Told of each move of the whole map, with the map's lock still held, so that whoever tracks
+  // in it moves along before it tracks again: T_wc(after) = correction * T_wc(before).
+  using CorrectionListener = std::function<void(const Eigen::Isometry3d& correction)>;
+  // Keyframe ids culling must leave (the tracker's reference keyframe); called with the lock.
+  using KeepKeyFrames = std::function<std::set<long>()>;
 
-  // `keep`: keyframe ids culling must leave (the tracker's reference keyframe); the new
-  // keyframe and the first one are always kept. Culled keyframes leave the place database too.
+  // Loads the vocabularies when loop.enabled (throws std::runtime_error naming a bad file).
+  // `wait_for_global_ba`: closeLoop waits for the global bundle adjustment it starts and writes
+  // it back (runs repeat bit for bit); false: it is solved beside the following keyframes and
+  // written back at the first of them after it ended (or by finishGlobalBundleAdjustment).
+  Mapper(const SystemConfig& config, Map& map, bool wait_for_global_ba = true);
+
+  void setCorrectionListener(CorrectionListener listener) { listener_ = std::move(listener); }
+  // The new keyframe and the first one are always kept, and those made after the new one.
+  // Culled keyframes leave the place database too.
   KeyFrameInsertionStats insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe,
-                                        const std::set<long>& keep = {});
+                                        const KeepKeyFrames& keep = {});
   // After insertKeyFrame, with the keyframe's packet (its images and instances): the place
   // database and a loop query; returns the correction when a loop was closed. Nothing without
   // loop.enabled.
   std::optional<LoopCorrection> closeLoop(KeyFrame& keyframe, const KeyFramePacket& packet);
+  // Waits for a global bundle adjustment still running and writes it back; true when it did.
+  bool finishGlobalBundleAdjustment();
+  // Writes back a global bundle adjustment that has ended, without waiting; true when it did.
+  bool applySolvedGlobalBundleAdjustment();
+  // One has ended and waits to be written back (any thread may ask).
+  bool globalBundleAdjustmentSolved() const { return global_ba_.hasSolved(); }
+  GlobalBundleAdjustmentCounts globalBundleAdjustmentCounts() const;
   // Relocalisation candidates (keyframe ids, most similar first); empty without loop.enabled.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
   // The whole map as a MapUpdate (whole_map set): after a loop, what copies of the map need.
@@ -65,6 +101,10 @@ class Mapper {
 
  private:
   KeyFrame* spanningTreeParent(const KeyFrame& keyframe) const;
+  // Writes a solved global bundle adjustment back (the lock held); returns how the newest
+  // keyframe moved.
+  Eigen::Isometry3d applyGlobal(const BundleWindow& window);
+  void tell(const Eigen::Isometry3d& correction) const;
 
   const SystemConfig config_;
   Map& map_;
@@ -73,6 +113,10 @@ class Mapper {
   MapPointCuller point_culler_;
   KeyFrameCuller keyframe_culler_;
   std::unique_ptr<LoopCloser> loop_closer_;
+  CorrectionListener listener_;
+  const bool wait_for_global_ba_;
+  int global_ba_applied_ = 0;
+  GlobalBundleAdjustment global_ba_;  // last: its thread stops before the rest goes
 };
 
 }  // namespace ply_slam

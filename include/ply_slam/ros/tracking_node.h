@@ -10,6 +10,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
+#include <chrono>
 
 #include <atomic>
 #include <condition_variable>
@@ -57,6 +58,7 @@ class TrackingNode {
   bool onSaveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   void enqueue(Job job);
   void publishSnapshot();
+  void publishMapped(const std::vector<MappedKeyFrame>& mapped);
   void work();
   void track(const Image& rgb, const Image& depth);
   void startSystem(const sensor_msgs::CameraInfo* info);
@@ -74,6 +76,10 @@ class TrackingNode {
   size_t frame_queue_size_ = 100;
   std::string map_folder_;  // ~map: a saved map to localise in; "" = a new map
   bool localisation_only_ = true;
+  bool mapping_thread_ = true;  // the mapping side beside tracking, not after each keyframe
+  size_t mapping_backlog_ = 0;  // keyframes the mapping thread had not finished (last looked)
+  // How often the idle worker looks for the mapping thread's results.
+  static constexpr std::chrono::milliseconds kMappedPollPeriod{100};
   bool map_failed_ = false;  // ~map could not be loaded: no frame is tracked
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)

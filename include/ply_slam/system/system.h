@@ -19,6 +19,8 @@
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/semantic/instance.h"
 #include "ply_slam/semantic/instance_memory.h"
+#include "ply_slam/system/mapping_job.h"
+#include "ply_slam/system/mapping_thread.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {
@@ -29,8 +31,10 @@ struct FrameTiming {
   double lines_ms = 0.0;     // line detection (beside ORB on a second thread), then LBD and 3D
                              // fitting side by side (0 when disabled); not a share of total_ms
   double tracking_ms = 0.0;  // matching, pose optimisation, keyframe insertion
+  double map_wait_ms = 0.0;  // of tracking_ms, waiting for the map's lock (the mapping thread)
   double total_ms = 0.0;     // features + lines + tracking: what the frame costs the tracking side
-  double mapping_ms = 0.0;   // local bundle adjustment after a new keyframe (mapping side)
+  double mapping_ms = 0.0;   // the mapping side's work delivered with this frame (on its own
+                             // thread with MappingMode::kOwnThread: not a share of total_ms)
 };
 
 // One extracted point feature and what became of it (for the tracking image and reports).
@@ -52,16 +56,10 @@ struct FrameResult {
   std::set<int> dynamic_instances;   // ids of the instances judged moving
   std::set<int> measured_instances;  // those of them this frame's own evidence found moving
   cv::Mat dynamic_mask;              // their dilated union (8UC1), empty when none
-  // The mapping side's culling after this frame's keyframe: points retired (the keyframes erased
-  // are in map_update).
-  int culled_points = 0;
-  // Set when the frame became a keyframe: what the mapping side (dense maps, mapping_node) gets.
-  std::shared_ptr<const KeyFramePacket> keyframe_packet;
-  // Set when the keyframe closed a loop: the correction and its counts.
-  std::shared_ptr<const LoopCorrection> loop_correction;
-  // Set with a keyframe: what the mapping side changed (local BA's window, culled keyframes, or
-  // after a loop the whole map) for whoever keeps a copy of the map (mapping_node).
-  std::shared_ptr<const MapUpdate> map_update;
+  // The mapping side's work finished since the previous frame, in keyframe order: with
+  // MappingMode::kInline this frame's keyframe, if it made one; with kOwnThread whatever the
+  // mapping thread finished meanwhile (System::finishMapping returns the rest).
+  std::vector<MappedKeyFrame> mapped;
 };
 
 // A frame the system cannot use (empty, wrong encoding or size, stamp not increasing).
@@ -71,14 +69,32 @@ class InvalidFrame : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// The whole pipeline in one process, frame by frame. Used by the offline tools and tests.
+// Where the mapping side runs. kInline: after each keyframe, before process() returns, so that
+// runs repeat bit for bit. kOwnThread: on a thread of its own, while tracking goes on (the two
+// share the map under Map::updateMutex()); results come with later frames.
+enum class MappingMode { kInline, kOwnThread };
+
+// The whole pipeline in one process, frame by frame: the tracking side in process(), the
+// mapping side as MappingMode says.
 class System {
  public:
-  explicit System(const SystemConfig& config);
+  explicit System(const SystemConfig& config, MappingMode mode = MappingMode::kInline);
 
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
   // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
   FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
+  // Waits for the mapping side to finish the keyframes it was given and returns what it made
+  // of those not delivered with a frame yet (nothing with kInline). Call it after the last
+  // frame, before reading the trajectories or saving the map.
+  std::vector<MappedKeyFrame> finishMapping();
+  // What the mapping thread finished since the last frame, for a caller with no frame coming
+  // (a node between frames: loop closures must not wait for the next frame); the next frame's
+  // result then holds only what finished after. Nothing with kInline.
+  std::vector<MappedKeyFrame> takeMapped();
+  // The most keyframes that waited for the mapping thread at once (0 with kInline).
+  size_t longestMappingQueue() const;
+  // Keyframes the mapping thread has not finished yet (0 with kInline).
+  size_t mappingBacklog() const;
 
   // Tracked frames, each placed relative to its reference keyframe as the map has that keyframe
   // now: bundle adjustment and loop closure move the past with the map.
@@ -88,6 +104,9 @@ class System {
   std::vector<KeyFramePacket> sparseKeyFramePackets() const;
   // Loop closure's counts; null without loop.enabled.
   const LoopClosureCounts* loopCounts() const { return mapper_.loopCounts(); }
+  GlobalBundleAdjustmentCounts globalBundleAdjustmentCounts() const {
+    return mapper_.globalBundleAdjustmentCounts();
+  }
   const Map& map() const { return map_; }
 
   // The map file a saved map is in, inside the folder saveMap and loadMap take.
@@ -113,9 +132,11 @@ class System {
   void rejectDynamic(FrameFeatures& features, double stamp, const std::vector<Instance>& instances,
                      FrameResult& result);
   static void markInliers(const Frame& frame, std::vector<FeatureMark>& marks);
-  // The mapping side, in line so that offline runs are reproducible: map upkeep, the packet,
-  // then the loop query (which needs the packet's images).
-  void map(const RgbdImages& images, const std::vector<Instance>& judged, FrameResult& result);
+  // The mapping side for one keyframe: map upkeep, the packet, then the loop query (which needs
+  // the packet's images). Runs on the mapping thread or in line; takes the map's lock itself.
+  MappedKeyFrame mapKeyFrame(const MappingJob& job);
+  // The frame's pose, hung from the tracker's reference keyframe (with the map's lock held).
+  void rememberTracked(const FrameResult& result);
   // Frames anchored on keyframes the mapping side erased move to live ones, where they are.
   void reanchorTrackedFrames(const std::vector<long>& erased);
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
@@ -133,8 +154,11 @@ class System {
   double last_stamp_ = -1.0;
   // Tracked frames, each relative to the tracker's reference keyframe of its time; the
   // keyframes they hang from (culled ones are replaced at once, see reanchorTrackedFrames).
+  // Guarded by the map's lock: the mapping side re-anchors.
   AnchoredTrajectory tracked_;
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
+  // Last: joined before anything it uses goes. Null with kInline.
+  std::unique_ptr<MappingThread> mapping_thread_;
 };
 
 }  // namespace ply_slam

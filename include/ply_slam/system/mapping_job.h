@@ -1,0 +1,52 @@
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <set>
+#include <vector>
+
+#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/map/key_frame.h"
+#include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/mapping/loop_corrector.h"
+#include "ply_slam/semantic/instance.h"
+
+namespace ply_slam {
+
+// A keyframe the tracker made, with what the mapping side needs of its frame (none: write back
+// a global bundle adjustment that ended after the last keyframe).
+struct MappingJob {
+  std::shared_ptr<KeyFrame> keyframe;
+  RgbdImages images;
+  std::vector<Instance> instances;  // as judged
+  std::set<int> dynamic_ids;
+  cv::Mat dynamic_mask;
+
+  // The same job owning copies of its images, for a mapping side that runs later on another
+  // thread while the caller may reuse its buffers.
+  MappingJob detached() const {
+    MappingJob job = *this;
+    job.images.rgb = images.rgb.clone();
+    job.images.depth = images.depth.clone();
+    for (auto& instance : job.instances) instance.mask = instance.mask.clone();
+    job.dynamic_mask = dynamic_mask.clone();
+    return job;
+  }
+};
+
+// What the mapping side made of one keyframe, for whoever keeps a copy of the map (dense maps,
+// mapping_node): the packet first, then what changed.
+struct MappedKeyFrame {
+  // Null only for a global bundle adjustment written back after the last keyframe: then
+  // map_update alone (the whole map).
+  std::shared_ptr<const KeyFramePacket> packet;
+  // Set when the keyframe closed a loop: the correction and its counts.
+  std::shared_ptr<const LoopCorrection> loop_correction;
+  // What the mapping side changed (local BA's window, culled keyframes, or after a loop the
+  // whole map).
+  std::shared_ptr<const MapUpdate> map_update;
+  int culled_points = 0;  // retired as unreliable or unconfirmed (the keyframes: map_update)
+  double ms = 0.0;        // the mapping side's time for it
+};
+
+}  // namespace ply_slam
