@@ -86,8 +86,3 @@ TEST_F(SmallMap, AnObservationFarOffIsRemoved) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
