@@ -76,8 +76,3 @@ TEST(AnchoredTrajectory, MissingKeyFramesAreErrors) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

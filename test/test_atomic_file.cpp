@@ -151,8 +151,3 @@ TEST(AtomicFile, TheTemporaryFileKeepsTheExtension) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

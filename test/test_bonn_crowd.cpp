@@ -70,8 +70,3 @@ TEST(BonnCrowd, GeometryAloneTracksAmongPeople) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -141,8 +141,3 @@ TEST_F(BowDatabaseTest, DirectIndexMatchingFindsTheTruePairs) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

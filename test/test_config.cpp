@@ -526,8 +526,3 @@ TEST(ConfigText, AKeyThatIsNotANameIsAConfigError) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

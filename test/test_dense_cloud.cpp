@@ -329,8 +329,3 @@ TEST(ClassPalette, FileOverridesColoursAndRejectsUnknownClasses) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -94,8 +94,3 @@ TEST(DepthSurfaces, RefusesWhatIsNotAMetricDepthImage) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -248,8 +248,3 @@ TEST(DelaunayConsistency, PersonCoveringTheImageIsNotTakenForTheStaticScene) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

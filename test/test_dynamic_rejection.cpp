@@ -81,8 +81,3 @@ TEST(DynamicRejection, GeometryAloneCatchesWalkersAndLeavesAStaticRoomAlone) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -79,8 +79,3 @@ TEST(EndToEnd, SyntheticOffice) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

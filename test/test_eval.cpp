@@ -464,8 +464,3 @@ TEST(RealGroundTruth, AteOfTransformedCopyOfFr1XyzIsZero) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

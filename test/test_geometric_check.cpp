@@ -196,8 +196,3 @@ TEST(GeometricCheck, RefusesMotionsBeyondARevisit) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -169,8 +169,3 @@ TEST(FinalLoopScore, PaperTable6Example) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

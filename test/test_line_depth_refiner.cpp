@@ -204,8 +204,3 @@ TEST(LineDepthRefiner, LeavesTheLineWithoutASurfaceBeside) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -236,8 +236,3 @@ TEST(LineTracking, DisabledIsExactlyPointsOnly) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -721,8 +721,3 @@ TEST(RealData, EdlinesFallbackFindsLinesOnARealImage) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

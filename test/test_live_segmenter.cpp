@@ -211,8 +211,3 @@ TEST(LiveSegmenter, AFrameTheSegmenterRejectsKeepsThePreviousResult) {
   EXPECT_EQ(live.segmentedFrames(), 1);
   EXPECT_EQ(live.instancesFor(frame(1.0)).size(), 1u);
 }
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -166,8 +166,3 @@ TEST_F(SmallMap, GlobalAdjustmentCarriesAlongWhatWasMadeMeanwhile) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

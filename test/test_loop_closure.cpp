@@ -68,8 +68,3 @@ TEST(LoopClosure, HalvesTheDriftOfOneWalkRoundTheRing) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -114,8 +114,3 @@ TEST(LoopCorrector, ClosingTheSquareTakesOutItsDrift) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

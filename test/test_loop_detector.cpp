@@ -304,8 +304,3 @@ TEST(VocabularyPath, EmptyMeansTheDefaultAndRelativeMeansThePackage) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -110,8 +110,3 @@ TEST(LoopGroundTruth, TimeDistanceAngleAndOverlapAllCount) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

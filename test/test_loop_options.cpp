@@ -60,8 +60,3 @@ TEST(LoopOptionsYaml, BadKeysAreNamed) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

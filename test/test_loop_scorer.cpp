@@ -172,8 +172,3 @@ TEST(LoopCandidateSelector, KeepsAcceptingWhileTheRunLastsBestFirst) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

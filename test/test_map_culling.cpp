@@ -286,8 +286,3 @@ TEST(MapPointCuller, RetiresNewPointsNoLaterKeyFrameConfirmed) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -193,8 +193,3 @@ TEST_F(MapFileTest, LoadingAfterTheFirstFrameIsAnError) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -91,8 +91,3 @@ TEST(MapLine, FusingFitsNarrowsTheDirection) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

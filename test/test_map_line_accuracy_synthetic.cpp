@@ -89,8 +89,3 @@ INSTANTIATE_TEST_SUITE_P(Scenes, MapLineAccuracy,
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -145,8 +145,3 @@ TEST(ConfigFromString, SameChecksAsFiles) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -73,8 +73,3 @@ INSTANTIATE_TEST_SUITE_P(BothMappingModes, MapStoreFollowsSystem,
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -55,8 +55,3 @@ TEST(MapStore, RestoreTakesTheTrackersMapAndKeepsWhatCameAfterIt) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

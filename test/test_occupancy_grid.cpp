@@ -233,8 +233,3 @@ TEST_F(GridFilesTest, MapYamlAndPgmReadBackAsMapServerReadsThem) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

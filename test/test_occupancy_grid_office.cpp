@@ -255,8 +255,3 @@ TEST(OccupancyGridOffice, PeopleWalkingThroughOccupyNoCell) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -335,8 +335,3 @@ TEST(PoseGraph, FiveHundredPosesWithLoop) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

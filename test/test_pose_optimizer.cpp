@@ -241,8 +241,3 @@ TEST(PoseOptimizer, LandmarksBehindTheCameraDoNotDragThePose) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

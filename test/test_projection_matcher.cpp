@@ -72,8 +72,3 @@ TEST(ProjectionMatcher, OccludedLandmarksAreNotVisible) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

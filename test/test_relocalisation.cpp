@@ -104,8 +104,3 @@ TEST(Relocalisation, TriesOnlyTheDatabasesCandidates) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

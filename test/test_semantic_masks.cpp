@@ -125,8 +125,3 @@ TEST(DynamicFeatures, StaticClassesAreKept) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -569,8 +569,3 @@ TEST(SyntheticSequence, UnwritableFolderNamesIt) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -208,8 +208,3 @@ TEST_F(SystemInputTest, AllZeroDepthDoesNotInitialise) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

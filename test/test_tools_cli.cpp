@@ -270,8 +270,3 @@ TEST(ToolsCommandLine, EvalNeverPrintsNanForHugeCoordinates) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -292,9 +292,3 @@ TEST(TumSequenceRealData, Freiburg1Xyz) {
 
 }  // namespace
 }  // namespace ply_slam
-
-// catkin_add_gtest links gtest without gtest_main.
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -231,8 +231,3 @@ TEST_F(VocabularyFileTest, WrongKindIsRejected) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

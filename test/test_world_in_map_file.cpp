@@ -49,8 +49,3 @@ TEST(WorldInMapFile, RefusesWhatIsNotOnePoseNamingTheFile) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

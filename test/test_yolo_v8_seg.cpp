@@ -137,8 +137,3 @@ TEST(YoloV8Seg, AFileThatIsNoOnnxModelIsNamed) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

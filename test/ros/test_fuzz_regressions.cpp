@@ -122,8 +122,3 @@ TEST(FuzzRegressions, BigEndianDepthIsRejected) {
   msg.depth.is_bigendian = 0;
   EXPECT_EQ(ply_slam::fromMsg(msg).depth.type(), CV_32FC1);
 }
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -246,8 +246,3 @@ TEST(RosConversions, OccupancyGridMessage) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

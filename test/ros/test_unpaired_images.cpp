@@ -47,8 +47,3 @@ TEST(UnpairedImages, ADeadPartnerStreamIsBounded) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
