@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/point_residual.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
@@ -108,6 +109,21 @@ TEST(LineResidual, ZeroForTheTruePoseWithShiftedEndpoints) {
     EXPECT_LT(optimizer.squaredLineError(o, T), 1e-12);
     EXPECT_GT(optimizer.squaredLineError(o, perturbed(T, 1)), 1e-2);
   }
+}
+
+// The line cost and the line classification share PointResidual's projection: an endpoint
+// nearer than kMinDepth is behind the camera for both (the classification used to project
+// anything beyond 1e-6 m and keep such a line as an inlier the cost ignored).
+TEST(LineResidual, EndpointNearerThanTheMinimumDepthIsBehindTheCamera) {
+  const PinholeCamera camera = makeCamera();
+  const PoseOptimizer optimizer(camera, PoseOptimizerParams());
+  LineObservation o;
+  o.line = {0.0, 1.0, -camera.cy};  // the row v = cy, where both ends project
+  o.end = {0.5, 0.0, 2.0};
+  o.start = {0.0, 0.0, PointResidual::kMinDepth};
+  EXPECT_EQ(optimizer.squaredLineError(o, Eigen::Isometry3d::Identity()), 0.0);
+  o.start.z() = 0.5 * PointResidual::kMinDepth;
+  EXPECT_TRUE(std::isinf(optimizer.squaredLineError(o, Eigen::Isometry3d::Identity())));
 }
 
 TEST(LineResidual, BalanceFactor) {
