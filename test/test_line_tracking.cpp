@@ -4,14 +4,20 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <random>
 #include <vector>
 
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/point_residual.h"
 #include "ply_slam/eval/trajectory_metrics.h"
+#include "ply_slam/features/line_extractor.h"
+#include "ply_slam/features/line_fitter.h"
+#include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/system/system.h"
 #include "ply_slam/tracking/pose_optimizer.h"
+#include "ply_slam/tracking/tracker.h"
 #include "pose_test_helpers.h"
 #include "shared_data.h"
 
@@ -103,6 +109,21 @@ TEST(LineResidual, ZeroForTheTruePoseWithShiftedEndpoints) {
     EXPECT_LT(optimizer.squaredLineError(o, T), 1e-12);
     EXPECT_GT(optimizer.squaredLineError(o, perturbed(T, 1)), 1e-2);
   }
+}
+
+// The line cost and the line classification share PointResidual's projection: an endpoint
+// nearer than kMinDepth is behind the camera for both (the classification used to project
+// anything beyond 1e-6 m and keep such a line as an inlier the cost ignored).
+TEST(LineResidual, EndpointNearerThanTheMinimumDepthIsBehindTheCamera) {
+  const PinholeCamera camera = makeCamera();
+  const PoseOptimizer optimizer(camera, PoseOptimizerParams());
+  LineObservation o;
+  o.line = {0.0, 1.0, -camera.cy};  // the row v = cy, where both ends project
+  o.end = {0.5, 0.0, 2.0};
+  o.start = {0.0, 0.0, PointResidual::kMinDepth};
+  EXPECT_EQ(optimizer.squaredLineError(o, Eigen::Isometry3d::Identity()), 0.0);
+  o.start.z() = 0.5 * PointResidual::kMinDepth;
+  EXPECT_TRUE(std::isinf(optimizer.squaredLineError(o, Eigen::Isometry3d::Identity())));
 }
 
 TEST(LineResidual, BalanceFactor) {
@@ -232,6 +253,50 @@ TEST(LineTracking, DisabledIsExactlyPointsOnly) {
   EXPECT_GT(c.lines_ms, 0.0);
   EXPECT_GT(c.line_inliers, 0);
   EXPECT_LE(computeAte(sequence.groundTruth(), c.trajectory).translation.rmse, 0.006);
+}
+
+// The tracker matches lines through LineMatcher, observed-length gate included: frame 4 of
+// fr1_xyz_37 with each segment cut to half a pixel about its middle (same line, direction and
+// descriptor, so every other gate still passes) gets no line match; whole, it gets many.
+TEST(LineTracking, SegmentsShorterThanAPixelAreNotMatched) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  const TumSequence sequence(folder);
+  SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+  config.lines.enabled = true;
+  const OrbExtractor orb(config.orb);
+  const LineExtractor line_extractor(config.lines);
+  const LineFitter fitter(config.lines, config.camera);
+  const auto frame = [&](size_t i) {
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    cv::Mat gray;
+    cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+    Frame f(static_cast<long>(i), images.stamp,
+            FrameFeatures::extract(gray, images.depth, config.camera, orb));
+    f.setLines(FrameLines::extract(gray, images.depth, config.camera, line_extractor, fitter));
+    return f;
+  };
+  const auto lineInliers = [&](bool shorten) {
+    Map map;
+    Tracker tracker(config, map, orb.scales());
+    for (size_t i = 0; i < 4; ++i) {
+      Frame f = frame(i);
+      EXPECT_EQ(tracker.track(f).state, TrackingState::kOk) << "frame " << i;
+    }
+    Frame f = frame(4);
+    if (shorten) {
+      for (LineFeature& l : f.lines.lines) {
+        const Eigen::Vector2d middle = 0.5 * (l.start + l.end), half = 0.25 * l.direction();
+        l.start = middle - half;
+        l.end = middle + half;
+      }
+    }
+    const TrackingResult r = tracker.track(f);
+    EXPECT_EQ(r.state, TrackingState::kOk);
+    return r.line_inliers;
+  };
+  EXPECT_GE(lineInliers(false), 20);
+  EXPECT_EQ(lineInliers(true), 0);
 }
 
 }  // namespace

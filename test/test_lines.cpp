@@ -629,14 +629,45 @@ TEST(LineMatcher, MatchesLinesAcrossAKnownMotion) {
   EXPECT_LT(std::count_if(wrong.begin(), wrong.end(), correct), 0.3 * gated.size());
 }
 
-TEST(LineMatcher, GatesOnAngleDistanceAndOverlap) {
-  const LineMatcher matcher(LineParams{}, syntheticCamera());  // 10 deg, 15 px
+// Whether matchSegments, which the tracker matches its landmarks with, matches a landmark that
+// projects at `depth` onto (ps, pe) to the one observed segment (the same descriptor).
+bool landmarkMatches(const LineMatcher& matcher, const PinholeCamera& camera,
+                     const Eigen::Vector2d& ps, const Eigen::Vector2d& pe,
+                     const LineFeature& observed, double depth = 2.0) {
+  FrameLines b;
+  b.lines = {observed};
+  b.descriptors = cv::Mat(1, 32, CV_8U, cv::Scalar(7));
+  const SegmentToMatch landmark{camera.backProject(ps, depth), camera.backProject(pe, depth),
+                                b.descriptors.ptr()};
+  return matcher.matchSegments({landmark}, b, Eigen::Isometry3d::Identity()).size() == 1;
+}
+
+// Each gate as withinGates states it and as the tracker applies it.
+TEST(LineMatcher, GatesOnAngleDistanceOverlapLengthAndView) {
+  const PinholeCamera camera = syntheticCamera();
+  const LineMatcher matcher(LineParams{}, camera);  // 10 deg, 15 px
+  const auto gates = [&](const Eigen::Vector2d& ps, const Eigen::Vector2d& pe,
+                         const LineFeature& observed) {
+    const bool matched = landmarkMatches(matcher, camera, ps, pe, observed);
+    EXPECT_EQ(matched, matcher.withinGates(ps, pe, observed));
+    return matched;
+  };
   const LineFeature observed = segment(100, 100, 300, 100);
-  EXPECT_TRUE(matcher.withinGates({120, 105}, {280, 110}, observed));
-  EXPECT_FALSE(matcher.withinGates({280, 110}, {120, 105}, observed)) << "opposite polarity";
-  EXPECT_FALSE(matcher.withinGates({120, 120}, {280, 120}, observed)) << "20 px away";
-  EXPECT_FALSE(matcher.withinGates({120, 100}, {280, 140}, observed)) << "14 deg off";
-  EXPECT_FALSE(matcher.withinGates({320, 100}, {400, 100}, observed)) << "beside, not over";
+  EXPECT_TRUE(gates({120, 105}, {280, 110}, observed));
+  EXPECT_FALSE(gates({280, 110}, {120, 105}, observed)) << "opposite polarity";
+  EXPECT_FALSE(gates({120, 120}, {280, 120}, observed)) << "20 px away";
+  EXPECT_FALSE(gates({120, 100}, {280, 140}, observed)) << "14 deg off";
+  EXPECT_FALSE(gates({320, 100}, {400, 100}, observed)) << "beside, not over";
+  EXPECT_FALSE(gates({120, 100}, {280, 100}, segment(200, 100, 200.5, 100)))
+      << "observed shorter than a pixel";
+  EXPECT_FALSE(gates({200, 100}, {200.5, 100}, observed)) << "projected shorter than a pixel";
+  // An observed segment left of the image (undistortion moves ends there) and a projection
+  // 14 or 12 px from it: wholly beyond 30 px (2 x 15) left of the image is out of view.
+  const LineFeature outside = segment(-17, 100, -17, 300);
+  EXPECT_FALSE(gates({-31, 100}, {-31, 300}, outside)) << "out of view";
+  EXPECT_TRUE(gates({-29, 100}, {-29, 300}, outside)) << "in view";
+  EXPECT_FALSE(landmarkMatches(matcher, camera, {120, 105}, {280, 110}, observed, 0.04))
+      << "nearer than 5 cm";
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "ply_slam/common/point_residual.h"
 #include "ply_slam/tracking/pose_optimizer.h"
 #include "pose_test_helpers.h"
 
@@ -237,6 +238,29 @@ TEST(PoseOptimizer, LandmarksBehindTheCameraDoNotDragThePose) {
     EXPECT_EQ(o.outliers_flagged, 1.0) << "a landmark behind the camera cannot be an inlier";
     EXPECT_GE(o.inliers_kept, 0.95) << depths.size() << " behind";
   }
+}
+
+// The classification shares the cost's behind-camera threshold: a landmark nearer than
+// PointResidual::kMinDepth, whose cost is a constant without gradient, is no inlier (it was one
+// when its pixel fitted: the classification projected anything beyond 1e-6 m).
+TEST(PoseOptimizer, LandmarkNearerThanTheMinimumDepthIsNoInlier) {
+  const PinholeCamera camera = makeCamera();
+  const Eigen::Isometry3d T = truePose();
+  Scene scene = makeScene(camera, T, 50, 0.0, 5);
+  for (PointObservation& o : scene.observations) {  // exact, so the solve stays at T
+    const Eigen::Vector3d p_c = T * o.world;
+    o.pixel = camera.project(p_c);
+    if (o.depth > 0.0) o.depth = p_c.z();
+  }
+  PointObservation near;
+  near.world = T.inverse() * Eigen::Vector3d(0.0, 0.0, 0.5 * PointResidual::kMinDepth);
+  near.pixel = {camera.cx, camera.cy};
+  scene.observations.push_back(near);
+  const PoseOptimizer optimizer(camera, PoseOptimizerParams());
+  Eigen::Isometry3d solved = T;
+  std::vector<bool> inlier;
+  EXPECT_EQ(optimizer.optimize(scene.observations, solved, inlier), 50);
+  EXPECT_FALSE(inlier.back());
 }
 
 }  // namespace

@@ -19,48 +19,90 @@ int hamming(const uchar* a, const uchar* b) { return cv::hal::normHamming(a, b, 
 
 }  // namespace
 
+// A projected segment: its ends, length and unit direction (px).
+struct LineMatcher::Projected {
+  Eigen::Vector2d ps, pe, d = Eigen::Vector2d::Zero();
+  double length;
+  Projected(const Eigen::Vector2d& s, const Eigen::Vector2d& e)
+      : ps(s), pe(e), length((e - s).norm()) {
+    if (length > 0.0) d = (e - s) / length;
+  }
+};
+
+// An image segment's line, direction, ends and length, computed once per frame, not per pair.
+struct LineMatcher::Observed {
+  Eigen::Vector3d l;
+  Eigen::Vector2d d, start, end;
+  double length;
+  explicit Observed(const LineFeature& f)
+      : l(f.line()), d(f.direction()), start(f.start), end(f.end), length(f.length()) {}
+};
+
 LineMatcher::LineMatcher(const LineParams& params, const PinholeCamera& camera)
     : params_(params),
       camera_(camera),
       cos_max_angle_(std::cos(params.match_angle_deg * kPi / 180.0)) {}
 
-bool LineMatcher::withinGates(const Eigen::Vector2d& ps, const Eigen::Vector2d& pe,
-                              const LineFeature& observed) const {
-  const Eigen::Vector2d projected = pe - ps;
-  const double length = projected.norm();
-  if (length < 1.0 || observed.length() < 1.0) return false;
-  const Eigen::Vector2d d = projected / length;
+bool LineMatcher::projectedPasses(const Projected& p) const {
+  if (p.length < 1.0) return false;
+  // Wholly beyond one side of the image by this margin, no segment in the image passes the
+  // distance gate (for angles up to 60 deg): skip the pairs.
+  const double margin = 2.0 * params_.match_distance_px;
+  const double right = camera_.width + margin, bottom = camera_.height + margin;
+  return !((p.ps.x() < -margin && p.pe.x() < -margin) ||
+           (p.ps.y() < -margin && p.pe.y() < -margin) || (p.ps.x() > right && p.pe.x() > right) ||
+           (p.ps.y() > bottom && p.pe.y() > bottom));
+}
+
+bool LineMatcher::pairPasses(const Projected& p, const Observed& o) const {
+  if (o.length < 1.0) return false;
   // Directed: both lines are oriented by polarity, which a rigid motion keeps.
-  if (d.dot(observed.direction()) < cos_max_angle_) return false;
-  const Eigen::Vector3d l = observed.line();
-  if (std::abs(l.dot(ps.homogeneous())) > params_.match_distance_px ||
-      std::abs(l.dot(pe.homogeneous())) > params_.match_distance_px)
+  if (p.d.dot(o.d) < cos_max_angle_) return false;
+  if (std::abs(o.l.dot(p.ps.homogeneous())) > params_.match_distance_px ||
+      std::abs(o.l.dot(p.pe.homogeneous())) > params_.match_distance_px)
     return false;
   // The two must overlap along the line: endpoints may move (occlusion, detection), but a
   // segment beside the projected one is another edge on the same line.
-  const double t0 = (observed.start - ps).dot(d), t1 = (observed.end - ps).dot(d);
-  return std::max(t0, t1) > 0.0 && std::min(t0, t1) < length;
+  const double t0 = (o.start - p.ps).dot(p.d), t1 = (o.end - p.ps).dot(p.d);
+  return std::max(t0, t1) > 0.0 && std::min(t0, t1) < p.length;
 }
 
-std::vector<LineMatch> LineMatcher::matchProjected(const FrameLines& a, const FrameLines& b,
-                                                   const Eigen::Isometry3d& T_ba) const {
-  CV_Assert(a.descriptors.rows == static_cast<int>(a.size()) &&
-            b.descriptors.rows == static_cast<int>(b.size()) && a.lines3d.size() == a.size());
+bool LineMatcher::withinGates(const Eigen::Vector2d& ps, const Eigen::Vector2d& pe,
+                              const LineFeature& observed) const {
+  const Projected p(ps, pe);
+  return projectedPasses(p) && pairPasses(p, Observed(observed));
+}
+
+bool LineMatcher::bestLine(const SegmentToMatch& s, const std::vector<Observed>& observed,
+                           const cv::Mat& descriptors, const Eigen::Isometry3d& T_bs,
+                           LineMatch& m) const {
+  const Eigen::Vector3d Ps = T_bs * s.start, Pe = T_bs * s.end;
+  if (Ps.z() < kMinProjectionDepth || Pe.z() < kMinProjectionDepth) return false;
+  const Projected p(camera_.project(Ps), camera_.project(Pe));
+  if (!projectedPasses(p)) return false;
+  BestTwo found;
+  for (size_t j = 0; j < observed.size(); ++j) {
+    if (!pairPasses(p, observed[j])) continue;
+    found.offer(hamming(s.descriptor, descriptors.ptr(static_cast<int>(j))), static_cast<long>(j));
+  }
+  if (!found.accept(params_.max_descriptor_distance, params_.match_ratio)) return false;
+  m.b = static_cast<int>(found.index);
+  m.distance = found.best;
+  return true;
+}
+
+std::vector<LineMatch> LineMatcher::matchSegments(const std::vector<SegmentToMatch>& segments,
+                                                  const FrameLines& b,
+                                                  const Eigen::Isometry3d& T_bs) const {
+  CV_Assert(b.descriptors.rows == static_cast<int>(b.size()));
+  std::vector<Observed> observed;
+  observed.reserve(b.size());
+  for (const LineFeature& f : b.lines) observed.emplace_back(f);
   std::vector<LineMatch> candidates;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (!a.hasLine3D(i)) continue;
-    const Eigen::Vector3d Ps = T_ba * a.lines3d[i].start, Pe = T_ba * a.lines3d[i].end;
-    if (Ps.z() < kMinProjectionDepth || Pe.z() < kMinProjectionDepth) continue;
-    const Eigen::Vector2d ps = camera_.project(Ps), pe = camera_.project(Pe);
-    BestTwo found;
-    for (size_t j = 0; j < b.size(); ++j) {
-      if (!withinGates(ps, pe, b.lines[j])) continue;
-      found.offer(
-          hamming(a.descriptors.ptr(static_cast<int>(i)), b.descriptors.ptr(static_cast<int>(j))),
-          static_cast<long>(j));
-    }
-    if (!found.accept(params_.max_descriptor_distance, params_.match_ratio)) continue;
-    candidates.push_back({static_cast<int>(i), static_cast<int>(found.index), found.best});
+  for (size_t i = 0; i < segments.size(); ++i) {
+    LineMatch m;
+    m.a = static_cast<int>(i);
+    if (bestLine(segments[i], observed, b.descriptors, T_bs, m)) candidates.push_back(m);
   }
   // Each line of B once: the closest descriptor keeps it.
   std::sort(candidates.begin(), candidates.end(), [](const LineMatch& x, const LineMatch& y) {
@@ -75,6 +117,22 @@ std::vector<LineMatch> LineMatcher::matchProjected(const FrameLines& a, const Fr
   }
   std::sort(matches.begin(), matches.end(),
             [](const LineMatch& x, const LineMatch& y) { return x.a < y.a; });
+  return matches;
+}
+
+std::vector<LineMatch> LineMatcher::matchProjected(const FrameLines& a, const FrameLines& b,
+                                                   const Eigen::Isometry3d& T_ba) const {
+  CV_Assert(a.descriptors.rows == static_cast<int>(a.size()) && a.lines3d.size() == a.size());
+  std::vector<SegmentToMatch> segments;
+  std::vector<int> index;  // A's segment of each
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!a.hasLine3D(i)) continue;
+    segments.push_back(
+        {a.lines3d[i].start, a.lines3d[i].end, a.descriptors.ptr(static_cast<int>(i))});
+    index.push_back(static_cast<int>(i));
+  }
+  std::vector<LineMatch> matches = matchSegments(segments, b, T_ba);
+  for (LineMatch& m : matches) m.a = index[m.a];
   return matches;
 }
 

@@ -46,21 +46,14 @@ struct FixedLineCost {
       : obs(o), cam(c), scale(std::sqrt(weight) / o.pixel_sigma) {}
 
   template <typename T>
-  bool endpoint(const T* pose, const Eigen::Vector3d& P, T* out) const {
+  void endpoint(const T* pose, const Eigen::Vector3d& P, T* out) const {
     const T w[3] = {T(P.x()), T(P.y()), T(P.z())};
-    T p[3];
-    ceres::AngleAxisRotatePoint(pose, w, p);
-    p[0] += pose[3];
-    p[1] += pose[4];
-    p[2] += pose[5];
-    if (p[2] < T(PointResidual::kMinDepth)) {
+    T p[3], uv[2];
+    if (!PointResidual::project(cam, pose, w, p, uv)) {
       *out = T(PointResidual::kBehindCameraResidual);
-      return true;
+      return;
     }
-    const T u = T(cam.fx) * p[0] / p[2] + T(cam.cx);
-    const T v = T(cam.fy) * p[1] / p[2] + T(cam.cy);
-    *out = (T(obs.line.x()) * u + T(obs.line.y()) * v + T(obs.line.z())) * T(scale);
-    return true;
+    *out = (T(obs.line.x()) * uv[0] + T(obs.line.y()) * uv[1] + T(obs.line.z())) * T(scale);
   }
 
   template <typename T>
@@ -88,7 +81,7 @@ PoseOptimizer::PoseOptimizer(const PinholeCamera& camera, const PoseOptimizerPar
 
 double PoseOptimizer::squaredError(const PointObservation& o, const Eigen::Isometry3d& T_cw) const {
   const Eigen::Vector3d p = T_cw * o.world;
-  if (p.z() <= 1e-6) return std::numeric_limits<double>::infinity();
+  if (!PointResidual::inFront(p)) return std::numeric_limits<double>::infinity();
   const double e_pixel =
       (camera_.project(p) - o.pixel).squaredNorm() / (o.pixel_sigma * o.pixel_sigma);
   if (!usesDepth(o)) return e_pixel;
@@ -99,7 +92,8 @@ double PoseOptimizer::squaredError(const PointObservation& o, const Eigen::Isome
 double PoseOptimizer::squaredLineError(const LineObservation& o,
                                        const Eigen::Isometry3d& T_cw) const {
   const Eigen::Vector3d ps = T_cw * o.start, pe = T_cw * o.end;
-  if (ps.z() <= 1e-6 || pe.z() <= 1e-6) return std::numeric_limits<double>::infinity();
+  if (!PointResidual::inFront(ps) || !PointResidual::inFront(pe))
+    return std::numeric_limits<double>::infinity();
   const double es = o.line.dot(camera_.project(ps).homogeneous());
   const double ee = o.line.dot(camera_.project(pe).homogeneous());
   return (es * es + ee * ee) / (o.pixel_sigma * o.pixel_sigma);
@@ -120,10 +114,10 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
   if (observations.empty() && lines.empty()) return 0;
   // Landmarks behind the camera at the start cannot be reprojected: outliers from the outset.
   for (size_t i = 0; i < observations.size(); ++i)
-    inlier[i] = (T_cw * observations[i].world).z() > PointResidual::kMinDepth;
+    inlier[i] = PointResidual::inFront(T_cw * observations[i].world);
   for (size_t k = 0; k < lines.size(); ++k)
-    line_inlier[k] = (T_cw * lines[k].start).z() > PointResidual::kMinDepth &&
-                     (T_cw * lines[k].end).z() > PointResidual::kMinDepth;
+    line_inlier[k] = PointResidual::inFront(T_cw * lines[k].start) &&
+                     PointResidual::inFront(T_cw * lines[k].end);
 
   Se3Params pose = toParams(T_cw);
 

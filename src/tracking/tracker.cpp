@@ -5,17 +5,13 @@
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
-#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/features2d.hpp>
-
-#include "ply_slam/features/best_two.h"
 
 namespace ply_slam {
 namespace {
 
 constexpr int kMinPnpMatches = 15;
 constexpr double kMaxVelocityGap = 0.2;  // s; beyond, the last motion says little
-constexpr double kMinLineDepth = 0.05;   // m; line endpoints nearer (or behind) do not project
 
 PoseOptimizerParams optimizerParams(const TrackingParams& t) {
   PoseOptimizerParams p;
@@ -49,6 +45,7 @@ Tracker::Tracker(const SystemConfig& config, Map& map, const std::vector<double>
       scales_(scales),
       optimizer_(config.camera, optimizerParams(config.tracking)),
       matcher_(config_.camera, std::log(config.orb.scale_factor), config.orb.num_levels),
+      line_matcher_(config.lines, config.camera),
       line_balance_(config.lines.balance == "one" ? LineBalance::kOne : LineBalance::kPaper) {}
 
 TrackingResult Tracker::track(Frame& frame) {
@@ -304,68 +301,18 @@ int Tracker::matchLines(Frame& frame,
                         const std::vector<std::shared_ptr<MapLine>>& candidates) const {
   std::fill(frame.map_lines.begin(), frame.map_lines.end(), nullptr);
   std::fill(frame.line_outlier.begin(), frame.line_outlier.end(), false);
-  const FrameLines& f = frame.lines;
-  if (f.size() == 0 || candidates.empty()) return 0;
-  struct Candidate {
-    int distance;
-    size_t line, landmark;
-  };
-  std::vector<Candidate> found_pairs;
-  const auto& p = config_.lines;
-  // The frame's lines once: homogeneous line, direction, extent (LineMatcher::withinGates
-  // does the same per pair).
-  struct Observed {
-    Eigen::Vector3d l;
-    Eigen::Vector2d d, start, end;
-  };
-  std::vector<Observed> observed(f.size());
-  for (size_t j = 0; j < f.size(); ++j)
-    observed[j] = {f.lines[j].line(), f.lines[j].direction(), f.lines[j].start, f.lines[j].end};
-  const double cos_max_angle = std::cos(p.match_angle_deg * M_PI / 180.0);
-  const double margin = 2.0 * p.match_distance_px;
-  const auto& cam = config_.camera;
+  std::vector<SegmentToMatch> segments;
+  std::vector<size_t> index;  // the candidate of each segment
   for (size_t m = 0; m < candidates.size(); ++m) {
     const MapLine& l = *candidates[m];
     if (l.bad) continue;
-    const Eigen::Vector3d Ps = frame.T_cw * l.start, Pe = frame.T_cw * l.end;
-    if (Ps.z() < kMinLineDepth || Pe.z() < kMinLineDepth) continue;
-    const Eigen::Vector2d ps = cam.project(Ps), pe = cam.project(Pe);
-    // Both ends off the same side of the image: not in view.
-    if ((ps.x() < -margin && pe.x() < -margin) || (ps.y() < -margin && pe.y() < -margin) ||
-        (ps.x() > cam.width + margin && pe.x() > cam.width + margin) ||
-        (ps.y() > cam.height + margin && pe.y() > cam.height + margin))
-      continue;
-    const double length = (pe - ps).norm();
-    if (length < 1.0) continue;
-    const Eigen::Vector2d d = (pe - ps) / length;
-    BestTwo best;
-    for (size_t j = 0; j < f.size(); ++j) {
-      const Observed& o = observed[j];
-      // The gates of LineMatcher::withinGates: direction, endpoint distances, overlap.
-      if (d.dot(o.d) < cos_max_angle) continue;
-      if (std::abs(o.l.dot(ps.homogeneous())) > p.match_distance_px ||
-          std::abs(o.l.dot(pe.homogeneous())) > p.match_distance_px)
-        continue;
-      const double t0 = (o.start - ps).dot(d), t1 = (o.end - ps).dot(d);
-      if (std::max(t0, t1) <= 0.0 || std::min(t0, t1) >= length) continue;
-      best.offer(
-          cv::hal::normHamming(l.descriptor.ptr(), f.descriptors.ptr(static_cast<int>(j)), 32),
-          static_cast<long>(j));
-    }
-    if (!best.accept(p.max_descriptor_distance, p.match_ratio)) continue;
-    found_pairs.push_back({best.best, static_cast<size_t>(best.index), m});
+    segments.push_back({l.start, l.end, l.descriptor.ptr()});
+    index.push_back(m);
   }
-  // Each frame line once: the closest descriptor keeps it.
-  std::sort(found_pairs.begin(), found_pairs.end(), [](const Candidate& a, const Candidate& b) {
-    return a.distance != b.distance ? a.distance < b.distance : a.landmark < b.landmark;
-  });
-  int matches = 0;
-  for (const Candidate& c : found_pairs) {
-    if (frame.map_lines[c.line]) continue;
-    frame.map_lines[c.line] = candidates[c.landmark];
-    ++matches;
-  }
-  return matches;
+  const std::vector<LineMatch> matches =
+      line_matcher_.matchSegments(segments, frame.lines, frame.T_cw);
+  for (const LineMatch& m : matches) frame.map_lines[m.b] = candidates[index[m.a]];
+  return static_cast<int>(matches.size());
 }
 
 int Tracker::trackLocalMap(Frame& frame) {

@@ -39,8 +39,17 @@ struct PinholeCamera {
   DepthNoiseModel depth_noise;
   double rolling_shutter_readout = 0.0;  // s from first to last row; 0 = global shutter
 
+  // The pixel uv of the camera-frame point p_c: the one pinhole projection (also for Ceres'
+  // Jets). The caller keeps p_c in front of the camera.
+  template <typename T>
+  void project(const T* p_c, T* uv) const {
+    uv[0] = T(fx) * p_c[0] / p_c[2] + T(cx);
+    uv[1] = T(fy) * p_c[1] / p_c[2] + T(cy);
+  }
   Eigen::Vector2d project(const Eigen::Vector3d& p_c) const {
-    return {fx * p_c.x() / p_c.z() + cx, fy * p_c.y() / p_c.z() + cy};
+    Eigen::Vector2d uv;
+    project(p_c.data(), uv.data());
+    return uv;
   }
   Eigen::Vector3d backProject(const Eigen::Vector2d& uv, double depth) const {
     return {(uv.x() - cx) * depth / fx, (uv.y() - cy) * depth / fy, depth};

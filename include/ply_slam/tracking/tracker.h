@@ -7,6 +7,7 @@
 
 #include "ply_slam/common/camera_velocity.h"
 #include "ply_slam/common/config.h"
+#include "ply_slam/features/line_matcher.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/tracking/frame.h"
 #include "ply_slam/tracking/pose_optimizer.h"
@@ -69,9 +70,8 @@ class Tracker {
   int trackLocalMap(Frame& frame);
   void updateLocalMap(const Frame& frame);
   int optimizePose(Frame& frame);
-  // Matches the frame's lines to line landmarks projected with frame.T_cw: LineMatcher's gates
-  // (direction, endpoint-to-line distance, overlap), then LBD distance and ratio; each frame
-  // line to its closest landmark. Replaces the frame's line matches. Returns the matches.
+  // Matches the frame's lines to the landmarks that are not bad, projected with frame.T_cw
+  // (LineMatcher::matchSegments). Replaces the frame's line matches. Returns the matches.
   int matchLines(Frame& frame, const std::vector<std::shared_ptr<MapLine>>& candidates) const;
   bool needKeyFrame(const Frame& frame, int inliers) const;
   void createKeyFrame(Frame& frame);
@@ -88,6 +88,7 @@ class Tracker {
   std::vector<double> scales_;
   PoseOptimizer optimizer_;
   ProjectionMatcher matcher_;
+  LineMatcher line_matcher_;
   LineBalance line_balance_;
 
   TrackingState state_ = TrackingState::kNotInitialised;
