@@ -84,8 +84,3 @@ TEST(MappingThread, QueuedJobsRunBeforeItStops) {
 
 }  // namespace
 }  // namespace ply_slam
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
