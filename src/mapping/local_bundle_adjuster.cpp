@@ -42,12 +42,6 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
   return apply(map, window);
 }
 
-LocalBundleAdjustmentStats LocalBundleAdjuster::adjustAll(Map& map, int max_iterations) const {
-  BundleWindow window = gatherAll(map, max_iterations);
-  solve(window);
-  return apply(map, window);
-}
-
 BundleWindow LocalBundleAdjuster::gatherLocal(KeyFrame& keyframe) const {
   std::vector<KeyFrame*> keyframes{&keyframe};
   for (KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
@@ -102,7 +96,7 @@ BundleWindow LocalBundleAdjuster::gather(const std::vector<KeyFrame*>& keyframes
         o.residual.depth_sigma =
             std::sqrt(config_.camera.depth_noise.varianceAgainstMap(f.depth[i]));
       }
-      o.behind = (kf->T_cw * point.position).z() <= PointResidual::kMinDepth;
+      o.behind = !PointResidual::inFront(kf->T_cw * point.position);
       window.observations.push_back(o);
     }
   }

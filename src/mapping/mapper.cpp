@@ -35,10 +35,7 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   KeyFrameInsertionStats stats;
   if (keyframe->id == 0) return stats;  // nothing to adjust against yet
   std::unique_lock<std::mutex> lock(map_.updateMutex());
-  if (auto solved = global_ba_.takeSolved()) {
-    tell(applyGlobal(*solved));
-    stats.global_ba_applied = true;
-  }
+  stats.global_ba_applied = writeBackSolvedGlobal().has_value();
   const std::vector<KeyFrame*> neighbours =
       keyframe->bestCovisible(config_.tracking.local_map_keyframes);
   fuser_.fuse(map_, *keyframe, neighbours);
@@ -74,42 +71,30 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
     lock.unlock();
     global_ba_.wait();
     lock.lock();
-    if (auto solved = global_ba_.takeSolved()) {
-      const Eigen::Isometry3d refined = applyGlobal(*solved);
-      tell(refined);
-      correction->world_correction = refined * correction->world_correction;
-    }
+    if (const auto refined = writeBackSolvedGlobal())
+      correction->world_correction = *refined * correction->world_correction;
     correction->global_ba_ms = watch.elapsedMs();
   }
   correction->ms += watch.elapsedMs();
   return correction;
 }
 
-bool Mapper::finishGlobalBundleAdjustment() {
-  global_ba_.wait();
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
-  auto solved = global_ba_.takeSolved();
-  if (!solved) return false;
-  tell(applyGlobal(*solved));
-  return true;
-}
-
 bool Mapper::applySolvedGlobalBundleAdjustment() {
   std::lock_guard<std::mutex> lock(map_.updateMutex());
-  auto solved = global_ba_.takeSolved();
-  if (!solved) return false;
-  tell(applyGlobal(*solved));
-  return true;
+  return writeBackSolvedGlobal().has_value();
 }
 
 GlobalBundleAdjustmentCounts Mapper::globalBundleAdjustmentCounts() const {
   return {global_ba_.started(), global_ba_applied_, global_ba_.abandoned(), global_ba_.solveMs()};
 }
 
-Eigen::Isometry3d Mapper::applyGlobal(const BundleWindow& window) {
-  const Eigen::Isometry3d moved = global_ba_.writeBack(map_, window);
+std::optional<Eigen::Isometry3d> Mapper::writeBackSolvedGlobal() {
+  const std::optional<BundleWindow> solved = global_ba_.takeSolved();
+  if (!solved) return std::nullopt;
+  const Eigen::Isometry3d moved = global_ba_.writeBack(map_, *solved);
   map_.removeBadPoints();
   ++global_ba_applied_;
+  tell(moved);
   return moved;
 }
 

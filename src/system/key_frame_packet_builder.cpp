@@ -34,8 +34,8 @@ KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera&
                                   const RgbdImages& images, const std::vector<Instance>& instances,
                                   const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask) {
   KeyFramePacket packet = makeSparseKeyFramePacket(keyframe, camera);
-  packet.rgb = images.rgb.clone();
-  packet.depth = images.depth.clone();
+  packet.rgb = images.rgb;
+  packet.depth = images.depth;
   if (!instances.empty()) {
     packet.label_image = cv::Mat::zeros(images.rgb.size(), CV_16UC1);
     // Larger instances first, so a smaller one in front keeps its pixels where they overlap.
@@ -51,7 +51,7 @@ KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera&
           {id, instance->class_name, instance->score, dynamic_ids.count(instance->id) > 0});
     }
   }
-  if (!dynamic_mask.empty()) packet.dynamic_mask = dynamic_mask.clone();
+  if (!dynamic_mask.empty()) packet.dynamic_mask = dynamic_mask;
   return packet;
 }
 

@@ -128,10 +128,11 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   markInliers(frame, result.features);
 
   if (result.tracking.new_keyframe) {
-    MappingJob job{result.tracking.new_keyframe, images, judged, result.dynamic_instances,
-                   result.dynamic_mask};
+    MappingJob job = MappingJob{result.tracking.new_keyframe, images, judged,
+                                result.dynamic_instances, result.dynamic_mask}
+                         .detached();
     if (mapping_thread_) {
-      mapping_thread_->push(job.detached());
+      mapping_thread_->push(std::move(job));
     } else {
       lock.unlock();
       result.mapped.push_back(mapKeyFrame(job));
@@ -187,13 +188,12 @@ MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
 std::vector<MappedKeyFrame> System::finishMapping() {
   if (!mapping_thread_) return {};
   mapping_thread_->waitIdle();
-  std::vector<MappedKeyFrame> mapped = mapping_thread_->takeFinished();
-  if (mapper_.finishGlobalBundleAdjustment()) {
-    MappedKeyFrame global;  // no keyframe: the whole map moved
-    global.map_update = std::make_shared<const MapUpdate>(mapper_.wholeMap());
-    mapped.push_back(std::move(global));
-  }
-  return mapped;
+  // A global bundle adjustment still solving: written back by the mapping thread like one that
+  // ended between frames (takeMapped).
+  mapper_.waitForGlobalBundleAdjustment();
+  if (mapper_.globalBundleAdjustmentSolved()) mapping_thread_->push(MappingJob{});
+  mapping_thread_->waitIdle();
+  return mapping_thread_->takeFinished();
 }
 
 std::vector<MappedKeyFrame> System::takeMapped() {

@@ -23,19 +23,18 @@ struct LocalBundleAdjustmentStats {
 // Huber, and removal of the observations that remain outliers.
 //
 // In three steps, so that the map's lock is held only to read and to write: gather* and apply
-// with Map::updateMutex() held, solve without. adjust/adjustAll do all three for a caller that
+// with Map::updateMutex() held, solve without. adjust does all three for a caller that
 // holds the lock throughout.
 class LocalBundleAdjuster {
  public:
   LocalBundleAdjuster(const SystemConfig& config) : config_(config) {}
 
   LocalBundleAdjustmentStats adjust(Map& map, KeyFrame& keyframe) const;
-  // Every keyframe and landmark (global bundle adjustment, after a loop), the first keyframe
-  // fixed.
-  LocalBundleAdjustmentStats adjustAll(Map& map, int max_iterations) const;
 
   // The window around `keyframe`: it and its best covisible keyframes.
   BundleWindow gatherLocal(KeyFrame& keyframe) const;
+  // Every keyframe and landmark (the global bundle adjustment after a loop), the first
+  // keyframe fixed.
   BundleWindow gatherAll(const Map& map, int max_iterations) const;
   // Changes only the window's numbers. Returns false, the numbers then half-solved, when
   // `abandon` turned true meanwhile.

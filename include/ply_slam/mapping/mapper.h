@@ -59,7 +59,7 @@ class Mapper {
   // Loads the vocabularies when loop.enabled (throws std::runtime_error naming a bad file).
   // `wait_for_global_ba`: closeLoop waits for the global bundle adjustment it starts and writes
   // it back (runs repeat bit for bit); false: it is solved beside the following keyframes and
-  // written back at the first of them after it ended (or by finishGlobalBundleAdjustment).
+  // written back at the first of them after it ended (or by applySolvedGlobalBundleAdjustment).
   Mapper(const SystemConfig& config, Map& map, bool wait_for_global_ba = true);
 
   void setCorrectionListener(CorrectionListener listener) { listener_ = std::move(listener); }
@@ -71,8 +71,9 @@ class Mapper {
   // database and a loop query; returns the correction when a loop was closed. Nothing without
   // loop.enabled.
   std::optional<LoopCorrection> closeLoop(KeyFrame& keyframe, const KeyFramePacket& packet);
-  // Waits for a global bundle adjustment still running and writes it back; true when it did.
-  bool finishGlobalBundleAdjustment();
+  // Blocks until a global bundle adjustment still running has ended (not with insertKeyFrame or
+  // closeLoop running on another thread).
+  void waitForGlobalBundleAdjustment() { global_ba_.wait(); }
   // Writes back a global bundle adjustment that has ended, without waiting; true when it did.
   bool applySolvedGlobalBundleAdjustment();
   // One has ended and waits to be written back (any thread may ask).
@@ -101,9 +102,9 @@ class Mapper {
 
  private:
   KeyFrame* spanningTreeParent(const KeyFrame& keyframe) const;
-  // Writes a solved global bundle adjustment back (the lock held); returns how the newest
-  // keyframe moved.
-  Eigen::Isometry3d applyGlobal(const BundleWindow& window);
+  // With the lock held: writes back a global bundle adjustment that has ended and tells the
+  // listener how the newest keyframe moved; that move, or nothing when none had ended.
+  std::optional<Eigen::Isometry3d> writeBackSolvedGlobal();
   void tell(const Eigen::Isometry3d& correction) const;
 
   const SystemConfig config_;

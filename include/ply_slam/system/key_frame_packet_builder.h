@@ -16,6 +16,7 @@ KeyFramePacket makeSparseKeyFramePacket(const KeyFrame& keyframe, const PinholeC
 
 // Packs a new keyframe for the mapping side: pose, features, landmarks, the images and the
 // segmentation (instances in `dynamic_ids` are marked dynamic; `dynamic_mask` may be empty).
+// The packet shares the images and the mask: pass copies nobody else changes (MappingJob's).
 KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
                                   const RgbdImages& images, const std::vector<Instance>& instances,
                                   const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask);

@@ -22,8 +22,8 @@ struct MappingJob {
   std::set<int> dynamic_ids;
   cv::Mat dynamic_mask;
 
-  // The same job owning copies of its images, for a mapping side that runs later on another
-  // thread while the caller may reuse its buffers.
+  // The same job owning copies of its images: the mapping side may run later on another
+  // thread while the caller reuses its buffers, and the keyframe packet keeps these copies.
   MappingJob detached() const {
     MappingJob job = *this;
     job.images.rgb = images.rgb.clone();
