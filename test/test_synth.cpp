@@ -19,6 +19,7 @@
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
 
@@ -93,21 +94,6 @@ double bilinear(const cv::Mat& image, const Eigen::Vector2d& p) {
   return (1 - fy) * ((1 - fx) * r0[x] + fx * r0[x + 1]) + fy * ((1 - fx) * r1[x] + fx * r1[x + 1]);
 }
 
-std::map<int, std::string> readInstances(const std::string& file) {
-  std::ifstream in(file);
-  std::map<int, std::string> classes;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    int id;
-    std::string name;
-    s >> id >> name;
-    classes[id] = name;
-  }
-  return classes;
-}
-
 // (d) The folder parses as a TUM sequence, camera.yaml loads, the images are the rendering.
 TEST_F(WrittenOffice, FolderLoadsWithTheLibraryReaders) {
   const TumSequence tum(dir_->string());
@@ -166,7 +152,8 @@ TEST_F(WrittenOffice, PixelsTransferToTheSameTexturePoint) {
     for (int y = 2; y < cam.height - 2; y += 4) {
       for (int x = 2; x < cam.width - 2; x += 4) {
         const float z = depth_i.at<float>(y, x);
-        if (z <= 0.0f || fi.instance.at<uint8_t>(y, x) != 0) continue;  // walkers move
+        const int id = fi.instance.at<uint8_t>(y, x);
+        if (z <= 0.0f || (id != 0 && id < Scene::kFirstObjectInstance)) continue;  // walkers move
         const Eigen::Vector3d p_j = T_ji * cam.backProject({x, y}, z);
         if (p_j.z() < 0.1) continue;
         const Eigen::Vector2d uv = cam.project(p_j);
@@ -332,29 +319,49 @@ TEST(SyntheticSequence, LinesLieOnImageEdgesInEveryScene) {
   }
 }
 
-// (c) Walkers: masked pixels belong to a person, are nearer than the static scene behind
-// them, and show a walker's surface; unmasked pixels show the static scene unchanged.
+// (c) Walkers: their pixels belong to a person, are nearer than the static scene behind them,
+// and show a walker's surface. Labelled objects (the desk, the monitor): their
+// pixels show the static scene unchanged, on a quad of that object. Unmasked pixels show the
+// static scene unchanged.
 TEST_F(WrittenOffice, WalkersAreMaskedAndOccludeTheScene) {
-  const std::map<int, std::string> classes = readInstances(path("instances.txt"));
-  ASSERT_EQ(classes.size(), static_cast<size_t>(kWalkers));
-  for (const auto& [id, name] : classes) EXPECT_EQ(name, "person") << id;
-  const int static_quads = static_cast<int>(seq_->scene().staticQuads().size());
-  long masked = 0, wrong = 0;
+  const std::map<int, std::string> classes = readInstanceClasses(path("instances.txt"));
+  int walkers = 0;
+  for (const auto& [id, name] : classes) {
+    if (id >= Scene::kFirstObjectInstance) {
+      EXPECT_TRUE(name == "tv" || name == "dining table") << id << " " << name;
+      continue;
+    }
+    ++walkers;
+    EXPECT_EQ(name, "person") << id;
+  }
+  EXPECT_EQ(walkers, kWalkers);
+  EXPECT_EQ(classes.size() - walkers, seq_->scene().objectClasses().size());
+  EXPECT_EQ(seq_->scene().objectClasses().size(), 2u);  // the desk and the monitor
+  const std::vector<Quad>& statics = seq_->scene().staticQuads();
+  const int static_quads = static_cast<int>(statics.size());
+  long masked = 0, objects = 0, wrong = 0;
   for (int i = 0; i < kFrames; i += 2) {
     const RenderedFrame f = seq_->renderExact(i, true), s = seq_->renderExact(i, false);
     for (int y = 0; y < f.depth.rows; ++y) {
       for (int x = 0; x < f.depth.cols; ++x) {
         const int id = f.instance.at<uint8_t>(y, x);
         const float z = f.depth.at<float>(y, x), z_static = s.depth.at<float>(y, x);
-        if (id == 0) {
-          wrong += z != z_static || f.surface.at<int>(y, x) >= static_quads;
+        const int surface = f.surface.at<int>(y, x);
+        if (id == 0 || id >= Scene::kFirstObjectInstance) {
+          wrong += z != z_static || surface >= static_quads;
+          if (id != 0) {
+            ++objects;
+            wrong += !classes.count(id) || statics[surface].instance != id;
+          }
           continue;
         }
         ++masked;
-        wrong += !classes.count(id) || !(z < z_static) || f.surface.at<int>(y, x) < static_quads;
+        wrong += !classes.count(id) || !(z < z_static) || surface < static_quads;
       }
     }
   }
+  std::cout << "[ objects ] " << objects << " labelled pixels\n";
+  EXPECT_GT(objects, 1000);
   std::cout << "[ walkers ] " << masked << " masked pixels in " << (kFrames + 1) / 2 << " frames\n";
   EXPECT_GT(masked, 10000);  // they are in view
   EXPECT_EQ(wrong, 0);
@@ -373,7 +380,7 @@ TEST_F(WrittenOffice, WalkersAreMaskedAndOccludeTheScene) {
   }
 }
 
-TEST(SyntheticSequence, NoWalkersNoMasks) {
+TEST(SyntheticSequence, NoWalkersOnlyObjectsMasked) {
   REQUIRE_TEXTURES();
   const fs::path dir =
       fs::temp_directory_path() / ("ply_slam_test_synth_empty_" + std::to_string(::getpid()));
@@ -386,11 +393,14 @@ TEST(SyntheticSequence, NoWalkersNoMasks) {
   for (const auto& entry : fs::directory_iterator(dir / "masks")) {
     const cv::Mat mask = cv::imread(entry.path().string(), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(mask.type(), CV_8UC1);
-    EXPECT_EQ(cv::countNonZero(mask), 0);
+    EXPECT_EQ(cv::countNonZero(mask != 0 & mask < Scene::kFirstObjectInstance), 0);
+    EXPECT_GT(cv::countNonZero(mask), 0);  // the desk is in view
     ++files;
   }
   EXPECT_EQ(files, 3);
-  EXPECT_TRUE(readInstances((dir / "instances.txt").string()).empty());
+  const std::map<int, std::string> classes = readInstanceClasses((dir / "instances.txt").string());
+  EXPECT_EQ(classes.size(), seq.scene().objectClasses().size());
+  EXPECT_EQ(classes, seq.scene().objectClasses());  // "dining table" read back with its space
   fs::remove_all(dir);
 }
 

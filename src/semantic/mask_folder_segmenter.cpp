@@ -1,5 +1,6 @@
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,10 +10,10 @@
 
 namespace ply_slam {
 
-MaskFolderSegmenter::MaskFolderSegmenter(const std::string& folder) : folder_(folder) {
-  const std::string list = folder + "/instances.txt";
-  std::ifstream in(list);
-  if (!in) throw std::runtime_error(list + ": missing (the instance id -> class list)");
+std::map<int, std::string> readInstanceClasses(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": missing (the instance id -> class list)");
+  std::map<int, std::string> classes;
   int line_number = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_number;
@@ -22,10 +23,16 @@ MaskFolderSegmenter::MaskFolderSegmenter(const std::string& folder) : folder_(fo
     int id = 0;
     std::string class_name;
     if (!(fields >> id >> class_name) || id <= 0 || id > 255)
-      throw std::runtime_error(list + " line " + std::to_string(line_number) +
+      throw std::runtime_error(path + " line " + std::to_string(line_number) +
                                ": expected \"id class_name\" with id in 1..255");
-    classes_[id] = class_name;
+    std::replace(class_name.begin(), class_name.end(), '_', ' ');
+    classes[id] = class_name;
   }
+  return classes;
+}
+
+MaskFolderSegmenter::MaskFolderSegmenter(const std::string& folder)
+    : folder_(folder), classes_(readInstanceClasses(folder + "/instances.txt")) {
   if (!std::filesystem::is_directory(folder + "/masks"))
     throw std::runtime_error(folder + "/masks: missing folder of instance masks");
 }

@@ -1,5 +1,7 @@
 #include "ply_slam/synth/scene.h"
 
+#include <stdexcept>
+
 namespace ply_slam {
 
 void Scene::setBounds(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
@@ -18,6 +20,14 @@ void Scene::addQuads(const std::vector<Quad>& quads) {
 
 void Scene::addLines(const std::vector<Segment3>& lines) {
   lines_.insert(lines_.end(), lines.begin(), lines.end());
+}
+
+int Scene::labelObject(std::size_t first_quad, const std::string& class_name) {
+  const int id = kFirstObjectInstance + static_cast<int>(object_classes_.size());
+  if (id > 255) throw std::length_error("more labelled objects than 8-bit masks can hold");
+  for (std::size_t k = first_quad; k < quads_.size(); ++k) quads_[k].instance = id;
+  object_classes_[id] = class_name;
+  return id;
 }
 
 std::vector<Quad> Scene::quadsAt(double t) const {

@@ -131,12 +131,22 @@ class Assembler {
     scene_.addLines(quadEdges(outline));
   }
 
-  // A picture on a wall; centre on the wall plane, `facing` the wall's inward normal.
+  // A picture on a wall; centre on the wall plane, `facing` the wall's inward normal. Not a
+  // labelled object: COCO has no class for pictures, doors, shelves or cabinets.
   void wallPicture(const Vector3d& centre, const Vector3d& facing, double outer_width,
                    const std::string& file) {
     const Vector3d right = (-facing).cross(Vector3d::UnitZ()).normalized();
     framedPhoto(centre + kPictureOffset * facing, right, -Vector3d::UnitZ(), outer_width, file,
                 0.035, bgr(0.08f, 0.07f, 0.06f));
+  }
+
+  // The static quads that `build` adds form one object of a COCO class (masks, instances.txt):
+  // the furniture a COCO segmenter reports, the desk and its monitor.
+  template <class Build>
+  void object(const std::string& class_name, Build build) {
+    const std::size_t first = scene_.staticQuads().size();
+    build();
+    scene_.labelObject(first, class_name);
   }
 
   // A door in a wall: the leaf just off the wall and a frame (two jambs and a lintel)
@@ -268,15 +278,19 @@ SceneSetup office(const std::string& dir, int walkers, bool textured) {
   std::array<SurfaceMaterial, 6> desk;
   desk.fill(plain(bgr(0.2f, 0.3f, 0.42f)));
   desk[kBoxTop] = textured ? a.fitted("stuff.jpg", 1.6, 0.8) : plain(bgr(0.55f, 0.7f, 0.8f));
-  a.box({5.0, 0.5, 0.72}, {5.8, 2.1, 0.76}, desk);
-  const SurfaceMaterial metal = plain(bgr(0.55f, 0.55f, 0.55f));
-  for (double x : {5.03, 5.72})
-    for (double y : {0.53, 2.02}) a.box({x, y, 0}, {x + 0.05, y + 0.05, 0.72}, metal);
-  a.box({5.55, 1.2, 0.76}, {5.65, 1.4, 0.9}, plain(bgr(0.35f, 0.35f, 0.35f)));
+  a.object("dining table", [&] {
+    a.box({5.0, 0.5, 0.72}, {5.8, 2.1, 0.76}, desk);
+    const SurfaceMaterial metal = plain(bgr(0.55f, 0.55f, 0.55f));
+    for (double x : {5.03, 5.72})
+      for (double y : {0.53, 2.02}) a.box({x, y, 0}, {x + 0.05, y + 0.05, 0.72}, metal);
+  });
   std::array<SurfaceMaterial, 6> screen;
   screen.fill(plain(bgr(0.08f, 0.08f, 0.08f)));
   screen[kBoxBack] = textured ? a.fitted("HappyFish.jpg", 0.7, 0.42) : screen[kBoxFront];
-  a.box({5.5, 0.95, 0.9}, {5.54, 1.65, 1.32}, screen);
+  a.object("tv", [&] {
+    a.box({5.55, 1.2, 0.76}, {5.65, 1.4, 0.9}, plain(bgr(0.35f, 0.35f, 0.35f)));
+    a.box({5.5, 0.95, 0.9}, {5.54, 1.65, 1.32}, screen);
+  });
   if (textured) {
     a.photoBox({5.15, 1.75, 0.76}, {5.22, 2.0, 0.93}, kBoxBack, "box.png",
                plain(bgr(0.75f, 0.78f, 0.8f)));
@@ -456,7 +470,9 @@ std::string sceneKindName(SceneKind kind) {
 int defaultFrames(SceneKind kind) { return kind == SceneKind::kRing ? 1500 : 300; }
 
 SceneSetup buildScene(SceneKind kind, int walkers, const std::string& texture_dir) {
-  if (walkers < 0 || walkers > 255) throw std::invalid_argument("walkers must be in 0..255");
+  if (walkers < 0 || walkers >= Scene::kFirstObjectInstance)
+    throw std::invalid_argument("walkers must be in 0.." +
+                                std::to_string(Scene::kFirstObjectInstance - 1));
   switch (kind) {
     case SceneKind::kOffice:
       return office(texture_dir, walkers, true);

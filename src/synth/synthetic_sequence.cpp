@@ -9,7 +9,9 @@ constexpr double kFirstStamp = 1700000000.0;  // TUM-like epoch stamps
 
 SynthOptions checked(const SynthOptions& o) {
   if (o.frames < 2) throw std::invalid_argument("frames must be >= 2");
-  if (o.walkers < 0 || o.walkers > 255) throw std::invalid_argument("walkers must be in 0..255");
+  if (o.walkers < 0 || o.walkers >= Scene::kFirstObjectInstance)
+    throw std::invalid_argument("walkers must be in 0.." +
+                                std::to_string(Scene::kFirstObjectInstance - 1));
   if (!(o.fps > 0.0)) throw std::invalid_argument("fps must be > 0");
   return o;
 }

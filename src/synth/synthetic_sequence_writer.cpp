@@ -1,5 +1,6 @@
 #include "ply_slam/synth/synthetic_sequence_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -101,8 +102,13 @@ SynthWriteStats writeSyntheticSequence(const SyntheticSequence& seq, const std::
   writeText(root / "camera.yaml", cameraYaml(seq.sensorCamera(), comment.str()));
 
   std::ostringstream instances;
-  instances << "# instance id, COCO class name (ids as in masks/)\n";
+  instances << "# instance id, COCO class name with '_' for spaces (ids as in masks/)\n";
   for (const Walker& w : scene.walkers()) instances << w.instance() << " person\n";
+  for (auto [id, class_name] : scene.objectClasses()) {
+    std::replace(class_name.begin(), class_name.end(), ' ',
+                 '_');  // one field (readInstanceClasses)
+    instances << id << " " << class_name << "\n";
+  }
   writeText(root / "instances.txt", instances.str());
 
   std::ostringstream lines;

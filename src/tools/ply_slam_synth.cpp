@@ -63,7 +63,8 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     if (!parseSceneKind(value, &o.synth.scene))
       usage("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
   } else if (arg == "--walkers") {
-    o.synth.walkers = static_cast<int>(parseInteger(arg, value, 0, 255));
+    o.synth.walkers =
+        static_cast<int>(parseInteger(arg, value, 0, Scene::kFirstObjectInstance - 1));
   } else if (arg == "--frames") {
     o.synth.frames = static_cast<int>(parseInteger(arg, value, 2, 1000000));
     o.frames_given = true;

@@ -22,4 +22,9 @@ class MaskFolderSegmenter : public Segmenter {
   std::map<int, std::string> classes_;  // instance id -> class name
 };
 
+// Reads an instances.txt: "id class_name [more fields]" per line, '#' comments; a class name of
+// several words is written with '_' for its spaces ("dining_table"; COCO names have no '_').
+// Throws naming the file and line on a malformed line.
+std::map<int, std::string> readInstanceClasses(const std::string& path);
+
 }  // namespace ply_slam

@@ -14,7 +14,7 @@ struct Quad {
   Eigen::Vector3d axis_u = Eigen::Vector3d::UnitX();  // full edge vectors, orthogonal
   Eigen::Vector3d axis_v = Eigen::Vector3d::UnitY();
   SurfaceMaterial material;
-  int instance = 0;  // 0 = static scene, else the walker's instance id (masks)
+  int instance = 0;  // masks: 0 = unlabelled static scene, else a walker or labelled object
 
   Eigen::Vector3d corner(int k) const;  // 0: origin, 1: +u, 2: +u+v, 3: +v
 };

@@ -10,7 +10,7 @@ namespace ply_slam {
 struct RenderedFrame {
   cv::Mat rgb;             // 8UC3 BGR
   cv::Mat depth;           // 32FC1, z along the optical axis in metres; 0 = no surface
-  cv::Mat instance;        // 8UC1 walker instance id; 0 = static scene
+  cv::Mat instance;        // 8UC1 instance id (Scene::kFirstObjectInstance); 0 = unlabelled
   cv::Mat surface;         // 32SC1 index of the visible quad in the rendered list; -1 = none
   cv::Mat surface_coords;  // 32FC2 metres along the quad's u and v axes: the texture point
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,11 +33,18 @@ class Scene {
   void addLine(const Segment3& line) { lines_.push_back(line); }
   void addLines(const std::vector<Segment3>& lines);
   void addWalker(const Walker& walker) { walkers_.push_back(walker); }
+  // Makes the static quads from index `first_quad` on one object of a COCO class: they get a new
+  // instance id (from kFirstObjectInstance up), so the masks and instances.txt hold the object as
+  // a segmenter would report it. Returns the id.
+  int labelObject(std::size_t first_quad, const std::string& class_name);
 
   const std::vector<Texture>& textures() const { return textures_; }
   const std::vector<Quad>& staticQuads() const { return quads_; }
   const std::vector<Segment3>& lines() const { return lines_; }
   const std::vector<Walker>& walkers() const { return walkers_; }
+  const std::map<int, std::string>& objectClasses() const { return object_classes_; }
+  // Walkers take ids 1..kFirstObjectInstance-1, the labelled static objects the ids above.
+  static constexpr int kFirstObjectInstance = 101;
   // Static quads followed by every walker's quads at time t (s).
   std::vector<Quad> quadsAt(double t) const;
 
@@ -49,6 +57,7 @@ class Scene {
   std::vector<Quad> quads_;
   std::vector<Segment3> lines_;
   std::vector<Walker> walkers_;
+  std::map<int, std::string> object_classes_;
 };
 
 }  // namespace ply_slam
