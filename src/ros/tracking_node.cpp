@@ -100,7 +100,7 @@ TrackingNode::~TrackingNode() {
                   << ", depth " << depth_received_ - std::min<size_t>(depth_received_, paired)
                   << "), tracked " << tracked_ << ", lost " << lost_ << ", dropped while behind "
                   << behind_dropped_ << ", skipped bad " << bad_input_.total() << " ("
-                  << bad_input_.summary() << "), median " << upperMedian(total_ms_, 0.0)
+                  << bad_input_.summary() << "), median " << median(total_ms_, 0.0)
                   << " ms per frame");
 }
 
@@ -403,7 +403,7 @@ void TrackingNode::publishStats() {
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
-    << " median_ms=" << upperMedian(total_ms_, 0.0);
+    << " median_ms=" << median(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

@@ -20,6 +20,7 @@
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/loop_ground_truth.h"
 #include "ply_slam/eval/pose_interpolation.h"
@@ -324,12 +325,6 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
   return run;
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
-}
-
 // One variant's decisions, as the precision-recall curve takes them.
 std::vector<ScoredDecision> decisionsOf(const std::vector<DecisionRow>& rows, size_t variant) {
   std::vector<ScoredDecision> out;
@@ -444,11 +439,11 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     << ", \"passed_true\": " << run.geometry_passed_true
     << ", \"passed_false\": " << run.geometry_passed_false << "},\n  \"timing_ms\": {"
     << "\"vocabulary_load\": " << jsonNumber(info.vocabulary_load_ms)
-    << ", \"add_keyframe_median\": " << jsonNumber(percentile(info.add_ms, 0.5))
-    << ", \"query_median\": " << jsonNumber(percentile(run.score_ms, 0.5))
-    << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0))
-    << ", \"geometric_check_median\": " << jsonNumber(percentile(run.check_ms, 0.5))
-    << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0)) << "}\n}\n";
+    << ", \"add_keyframe_median\": " << jsonNumber(median(info.add_ms, 0.0))
+    << ", \"query_median\": " << jsonNumber(median(run.score_ms, 0.0))
+    << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0, 0.0))
+    << ", \"geometric_check_median\": " << jsonNumber(median(run.check_ms, 0.0))
+    << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0, 0.0)) << "}\n}\n";
   file.commit();
 }
 

@@ -125,12 +125,11 @@ int main(int argc, char** argv) {
     }
     std::cout << std::fixed << std::setprecision(1)
               << fs::path(params.model_path).filename().string() << ": " << ms.size() << " frames, "
-              << upperMedian(ms, std::nan("")) << " ms median per frame";
+              << median(ms, std::nan("")) << " ms median per frame";
     if (truth) {
       const long missed = std::count_if(ious.begin(), ious.end(), [](double x) { return x < 0.3; });
-      std::cout << std::setprecision(3) << ", person mask IoU median "
-                << upperMedian(ious, std::nan("")) << " over " << ious.size()
-                << " views (walkers > 2 % of the image), " << missed
+      std::cout << std::setprecision(3) << ", person mask IoU median " << median(ious, std::nan(""))
+                << " over " << ious.size() << " views (walkers > 2 % of the image), " << missed
                 << " of them missed (IoU < 0.3)";
     }
     std::cout << "\n";

@@ -22,6 +22,7 @@
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -215,13 +216,11 @@ KeyFrameWords words(const FrameDescriptors& f, const BinaryVocabulary& orb,
 }
 
 std::string msText(const std::vector<double>& ms) {
-  std::vector<double> sorted = ms;
-  std::sort(sorted.begin(), sorted.end());
   double sum = 0.0;
   for (double v : ms) sum += v;
   std::ostringstream out;
   out << std::fixed << std::setprecision(3) << "mean " << sum / ms.size() << " ms, median "
-      << sorted[sorted.size() / 2] << " ms, max " << sorted.back() << " ms";
+      << median(ms) << " ms, max " << percentile(ms, 1.0) << " ms";
   return out.str();
 }
 
