@@ -60,20 +60,16 @@ struct Options : RunArguments {
   LoopGroundTruthParams truth;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_loops: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (o.segmentation.take(arg, value) || o.take(arg, value)) return;
   if (arg == "--max-frames") {
     const auto n = parseWholeNumber(value, 1, 1000000000L);
-    if (!n) usage("--max-frames needs a whole number >= 1, got '" + value + "'");
+    if (!n) throw UsageError("--max-frames needs a whole number >= 1, got '" + value + "'");
     o.max_frames = *n;
   } else if (arg == "--min-gap-s") {
     const auto s = parseRealNumber(value);
-    if (!s || *s < 0) usage("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
+    if (!s || *s < 0)
+      throw UsageError("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
     o.truth.min_gap_s = *s;
   }
 }
@@ -89,13 +85,12 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   try {
     line.parse(argc, argv);
     o.segmentation.check();
     o.require();
   } catch (const std::invalid_argument& e) {
-    usage(e.what());
+    throw UsageError(e.what());
   }
   return o;
 }
@@ -531,6 +526,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_loops", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_loops", kUsage, [&] { return run(parse(argc, argv)); });
 }

@@ -100,14 +100,9 @@ const char* const kUsage =
 
 constexpr int kExitEvaluationFailed = 3;
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_tum: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 long parseCount(const std::string& option, const std::string& text) {
   const std::optional<long> value = parseWholeNumber(text, 0, 1000000000L);
-  if (!value) usage(option + " needs a whole number >= 0, got '" + text + "'");
+  if (!value) throw UsageError(option + " needs a whole number >= 0, got '" + text + "'");
   return *value;
 }
 
@@ -127,7 +122,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.map = value;
   } else if (arg == "--localisation-only") {
     if (value != "true" && value != "false")
-      usage("--localisation-only takes true or false, got '" + value + "'");
+      throw UsageError("--localisation-only takes true or false, got '" + value + "'");
     o.localisation_only = value == "true";
     o.localisation_only_given = true;
   }
@@ -138,10 +133,12 @@ void checkOptions(const Options& o) {
   if (!o.dynamic.empty()) try {
       parseDynamicMode(o.dynamic);
     } catch (const std::invalid_argument&) {
-      usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
+      throw UsageError("unknown dynamic mode '" + o.dynamic +
+                       "' (off, geometric, semantic or full)");
     }
-  if (o.live && o.segmentation.kind == "none") usage("--live needs a segmenter");
-  if (o.localisation_only_given && o.map.empty()) usage("--localisation-only needs --map");
+  if (o.live && o.segmentation.kind == "none") throw UsageError("--live needs a segmenter");
+  if (o.localisation_only_given && o.map.empty())
+    throw UsageError("--localisation-only needs --map");
   o.require();
 }
 
@@ -172,12 +169,11 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   try {
     line.parse(argc, argv);
     checkOptions(o);
   } catch (const std::invalid_argument& e) {
-    usage(e.what());
+    throw UsageError(e.what());
   }
   return o;
 }
@@ -702,6 +698,5 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_tum", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_tum", kUsage, [&] { return run(parse(argc, argv)); });
 }

@@ -53,16 +53,11 @@ struct Options {
   long keyframes = 2000;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_vocabulary: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 long wholeNumber(const std::string& option, const std::string& text, long min, long max) {
   const std::optional<long> value = parseWholeNumber(text, min, max);
   if (!value)
-    usage(option + " needs a whole number in [" + std::to_string(min) + ", " + std::to_string(max) +
-          "], got '" + text + "'");
+    throw UsageError(option + " needs a whole number in [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "], got '" + text + "'");
   return *value;
 }
 
@@ -71,7 +66,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.images = value;
   } else if (arg == "--kind") {
     o.kind = parseDescriptorKind(value);
-    if (!o.kind) usage("--kind needs orb or lbd, got '" + value + "'");
+    if (!o.kind) throw UsageError("--kind needs orb or lbd, got '" + value + "'");
   } else if (arg == "--out") {
     o.out = value;
   } else if (arg == "--config") {
@@ -93,7 +88,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
   } else if (arg == "--keyframes") {
     o.keyframes = wholeNumber(arg, value, 1, 1000000);
   } else {
-    usage("unknown option " + arg);
+    throw UsageError("unknown option " + arg);
   }
 }
 
@@ -110,12 +105,11 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
-  if (o.images.empty()) usage("--images is required");
+  if (o.images.empty()) throw UsageError("--images is required");
   if (o.benchmark && (o.orb_vocabulary.empty() || o.lbd_vocabulary.empty()))
-    usage("--benchmark needs --orb-vocabulary and --lbd-vocabulary");
-  if (!o.benchmark && (!o.kind || o.out.empty())) usage("--kind and --out are required");
+    throw UsageError("--benchmark needs --orb-vocabulary and --lbd-vocabulary");
+  if (!o.benchmark && (!o.kind || o.out.empty())) throw UsageError("--kind and --out are required");
   if (o.kind) o.vocabulary.kind = *o.kind;
   return o;
 }
@@ -272,8 +266,8 @@ int benchmark(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_vocabulary", [&] {
+  return ply_slam::runTool("ply_slam_vocabulary", kUsage, [&] {
+    const Options options = parse(argc, argv);
     return options.benchmark ? benchmark(options) : train(options);
   });
 }
