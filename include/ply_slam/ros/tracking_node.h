@@ -76,7 +76,7 @@ class TrackingNode {
 
   ros::NodeHandle nh_, pnh_;
   const TrackingNodeOptions options_;  // read-only after construction: any thread
-  TrackingBackEnd back_end_;
+  TrackingBackEnd back_end_;           // the worker uses it (segmenter, make_system)
 
   // Worker thread only.
   size_t mapping_backlog_ = 0;  // keyframes the mapping thread had not finished (last looked)
