@@ -76,13 +76,26 @@ TEST(ToolsCommandLine, EveryToolNamesAnUnknownOption) {
     }
 }
 
-// Each tool's main goes through CommandLine (one behaviour for --help and unknown options).
+// A usage error, wherever a tool finds it, exits 2 with the usage after the message.
+TEST(ToolsCommandLine, EveryToolExitsTwoWithItsUsageOnAUsageError) {
+  TempDir dir;
+  for (const auto& tool : kTools) {
+    const std::string arguments = tool == "ply_slam_eval" ? "ate --bogus" : "--bogus";
+    const Result r = run(dir, tool, arguments);
+    EXPECT_EQ(r.exit_code, 2) << tool << " said: " << r.err;
+    EXPECT_TRUE(contains(r.err, tool + ": unknown option --bogus")) << tool << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, "usage: " + tool)) << tool << " said: " << r.err;
+  }
+}
+
+// Each tool's main goes through CommandLine and runTool (one behaviour for --help, unknown
+// options, usage errors and failures).
 TEST(ToolsCommandLine, EveryToolParsesWithCommandLine) {
   for (const auto& tool : kTools) {
-    if (tool == "ply_slam_eval") continue;  // a command first, then its options: its own parser
     const std::string source =
         readAll(fs::path(PLY_SLAM_SOURCE_DIR) / "src" / "tools" / (tool + ".cpp"));
     EXPECT_TRUE(contains(source, "CommandLine line;")) << tool;
+    EXPECT_TRUE(contains(source, "runTool(\"" + tool + "\"")) << tool;
   }
 }
 

@@ -15,17 +15,24 @@ void CommandLine::parse(int argc, char** argv) const {
     }
     if (flags.count(arg)) {
       on_flag(arg);
-      continue;
+    } else if (options.count(arg)) {
+      if (i + 1 >= argc) throw UsageError("missing value after " + arg);
+      on_option(arg, argv[++i]);
+    } else if (on_positional && (arg.size() < 2 || arg[0] != '-')) {
+      on_positional(arg);
+    } else {
+      throw UsageError("unknown option " + arg + (unknown_hint ? unknown_hint() : ""));
     }
-    if (!options.count(arg)) fail("unknown option " + arg);
-    if (i + 1 >= argc) fail("missing value after " + arg);
-    on_option(arg, argv[++i]);
   }
 }
 
-int runReportingErrors(const std::string& tool, const std::function<int()>& run) {
+int runTool(const std::string& tool, const std::string& usage_text,
+            const std::function<int()>& run) {
   try {
     return run();
+  } catch (const UsageError& e) {
+    std::cerr << tool << ": " << e.what() << "\n" << usage_text;
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << tool << ": " << e.what() << "\n";
     return 1;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/dense/top_view_renderer.h"
 
 namespace ply_slam {
@@ -172,11 +173,7 @@ FloorFrame FloorFrameEstimator::estimate(const std::vector<Eigen::Vector3d>& poi
   std::vector<double> heights;
   for (const auto& p : below) heights.push_back(up.dot(p));
   double height = std::isfinite(lowest_camera) ? lowest_camera : 0.0;
-  if (!heights.empty()) {
-    const size_t k = heights.size() / 50;
-    std::nth_element(heights.begin(), heights.begin() + k, heights.end());
-    height = heights[k] - 0.5 * voxel_size;
-  }
+  if (!heights.empty()) height = kthSmallest(heights, heights.size() / 50) - 0.5 * voxel_size;
   floor.T_world_floor = frameOn(up, height, trajectory);
   floor.method = "lowest";
   return floor;

@@ -1,19 +1,15 @@
 // tracking_node: see ply_slam::TrackingNode (include/ply_slam/ros/tracking_node.h).
 #include <ros/ros.h>
 
+#include "ply_slam/ros/node_main.h"
 #include "ply_slam/ros/tracking_node.h"
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "tracking_node");
-  // Held here, not by the node alone: when its constructor throws, the last NodeHandle going
-  // would shut ROS down and its logging with it, and the node would die without a word.
-  ros::NodeHandle nh, pnh("~");
-  try {
-    ply_slam::TrackingNode node(nh, pnh);
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL_STREAM("tracking_node: " << e.what());
-    return 1;
-  }
-  return 0;
+  return ply_slam::runNode(
+      argc, argv, "tracking_node", [](ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+        ply_slam::TrackingNodeOptions options = ply_slam::trackingNodeOptionsFromParams(pnh);
+        ply_slam::TrackingBackEnd back_end = ply_slam::TrackingBackEnd::fromOptions(options);
+        ply_slam::TrackingNode node(nh, pnh, std::move(options), std::move(back_end));
+        ros::spin();
+      });
 }

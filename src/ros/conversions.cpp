@@ -170,6 +170,30 @@ Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& m) {
   return T;
 }
 
+geometry_msgs::TransformStamped toTransformMsg(const Eigen::Isometry3d& T, const ros::Time& stamp,
+                                               const std::string& parent,
+                                               const std::string& child) {
+  const geometry_msgs::Pose pose = toPoseMsg(T);
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = pose.position.x;
+  t.transform.translation.y = pose.position.y;
+  t.transform.translation.z = pose.position.z;
+  t.transform.rotation = pose.orientation;
+  return t;
+}
+
+Eigen::Isometry3d fromTransformMsg(const geometry_msgs::Transform& t) {
+  geometry_msgs::Pose pose;
+  pose.position.x = t.translation.x;
+  pose.position.y = t.translation.y;
+  pose.position.z = t.translation.z;
+  pose.orientation = t.rotation;
+  return fromPoseMsg(pose);
+}
+
 PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera camera) {
   camera.fx = info.K[0];
   camera.fy = info.K[4];

@@ -1,11 +1,9 @@
 #include "ply_slam/ros/mapping_node.h"
 
 #include <geometry_msgs/PoseArray.h>
-#include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Path.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <sensor_msgs/PointCloud2.h>
-#include <sensor_msgs/point_cloud2_iterator.h>
 #include <std_srvs/Trigger.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -20,118 +18,56 @@
 #include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/map/world_in_map_file.h"
-#include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/dense_map_messages.h"
 #include "ply_slam/ros/grid_map_message.h"
+#include "ply_slam/ros/sparse_map_messages.h"
 #include "ply_slam/system/system.h"
 
 namespace ply_slam {
-namespace {
 
-std::string withoutLeadingSlash(std::string frame) {
-  while (!frame.empty() && frame.front() == '/') frame.erase(frame.begin());
-  return frame;
-}
-
-Eigen::Isometry3d fromTransformMsg(const geometry_msgs::Transform& t) {
-  geometry_msgs::Pose pose;
-  pose.position.x = t.translation.x;
-  pose.position.y = t.translation.y;
-  pose.position.z = t.translation.z;
-  pose.orientation = t.rotation;
-  return fromPoseMsg(pose);
-}
-
-geometry_msgs::TransformStamped toTransformMsg(const Eigen::Isometry3d& T, const ros::Time& stamp,
-                                               const std::string& parent,
-                                               const std::string& child) {
-  const geometry_msgs::Pose pose = toPoseMsg(T);
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  t.transform.translation.x = pose.position.x;
-  t.transform.translation.y = pose.position.y;
-  t.transform.translation.z = pose.position.z;
-  t.transform.rotation = pose.orientation;
-  return t;
-}
-
-}  // namespace
-
-MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
-  map_frame_ = withoutLeadingSlash(pnh_.param<std::string>("map_frame", "map"));
-  world_frame_ = withoutLeadingSlash(pnh_.param<std::string>("world_frame", map_frame_));
-  odom_frame_ = withoutLeadingSlash(pnh_.param<std::string>("odom_frame", ""));
-  camera_frame_ =
-      withoutLeadingSlash(pnh_.param<std::string>("camera_frame", "camera_color_optical_frame"));
-
-  // A fixed placement of the SLAM world in the map frame, e.g. to show the optical-frame world of
-  // a TUM bag upright: x y z (m) yaw pitch roll (rad), as tf2_ros static_transform_publisher.
-  // [] (mapping.launch's default) = none.
-  std::vector<double> world_in_map;
-  if (pnh_.getParam("world_in_map", world_in_map) && !world_in_map.empty() && odom_frame_.empty() &&
-      world_frame_ != map_frame_) {
-    if (world_in_map.size() != 6)
-      throw std::invalid_argument("~world_in_map needs 6 numbers: x y z yaw pitch roll");
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() = Eigen::Vector3d(world_in_map[0], world_in_map[1], world_in_map[2]);
-    T.linear() = (Eigen::AngleAxisd(world_in_map[3], Eigen::Vector3d::UnitZ()) *
-                  Eigen::AngleAxisd(world_in_map[4], Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(world_in_map[5], Eigen::Vector3d::UnitX()))
-                     .toRotationMatrix();
+MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOptions options,
+                         MappingBackEnd back_end)
+    : nh_(nh),
+      pnh_(pnh),
+      options_(std::move(options)),
+      dense_(std::move(back_end.dense)),
+      grid_builder_(std::move(back_end.grid_builder)),
+      tf_listener_(tf_buffer_) {
+  if (options_.world_in_map) {
+    T_map_world_ = options_.world_in_map;
     static_broadcaster_.sendTransform(
-        toTransformMsg(T, ros::Time::now(), map_frame_, world_frame_));
-    T_map_world_ = T;
+        toTransformMsg(*T_map_world_, ros::Time::now(), options_.map_frame, options_.world_frame));
   }
   // A saved map to localise in: its map frame is the one it was saved in, not where odometry
   // starts today. Until the tracker has relocalised no pose arrives, so no map -> odom either.
-  const std::string map_folder = pnh_.param<std::string>("map", "");
-  if (!map_folder.empty()) placeWorldAsSaved(map_folder);
+  if (!options_.map.empty()) placeWorldAsSaved(options_.map);
 
   points_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("map_points", 1, true);
   lines_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("map_lines", 1, true);
   keyframes_pub_ = pnh_.advertise<geometry_msgs::PoseArray>("keyframes", 1, true);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
-  // Dense cloud and octree: built on the worker's thread from the keyframes'
-  // images, published every ~dense_publish_period seconds. Settings: the config's dense section.
-  const SystemConfig config = pnh_.hasParam("config") ? configFromParams(pnh_) : SystemConfig();
-  if (config.dense.enabled) {
-    dense_ = std::make_unique<DenseMappingWorker>(config.dense);
+  // Dense cloud and octree: built on the worker's thread from the keyframes' images, published
+  // every ~dense_publish_period seconds.
+  if (dense_) {
     dense_cloud_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
     octomap_markers_pub_ =
         pnh_.advertise<visualization_msgs::MarkerArray>("octomap_markers", 1, true);
     octomap_cloud_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("octomap_cloud", 1, true);
-    const double period = pnh_.param("dense_publish_period", 2.0);
-    if (!(period > 0.0)) throw std::invalid_argument("~dense_publish_period must be > 0 s");
-    dense_timer_ = nh_.createTimer(ros::Duration(period), &MappingNode::publishDense, this);
+    dense_timer_ = nh_.createTimer(ros::Duration(options_.dense_publish_period),
+                                   &MappingNode::publishDense, this);
   }
-  if (config.dense.enabled && config.grid.enabled) {
-    dense_->withMaps([&](DenseMap&, const SemanticOctree& octree) {
-      grid_builder_ = std::make_unique<OccupancyGridBuilder>(
-          config.grid,
-          OccupancyGridBuilder::labelsOf(octree.palette(), config.dynamic.active_classes));
-    });
+  if (grid_builder_) {
     grid_pub_ = pnh_.advertise<nav_msgs::OccupancyGrid>("grid_map", 1, true);
-    const double period = pnh_.param("grid_publish_period", 2.0);
-    if (!(period > 0.0)) throw std::invalid_argument("~grid_publish_period must be > 0 s");
-    grid_timer_ = nh_.createTimer(ros::Duration(period), &MappingNode::publishGrid, this);
+    grid_timer_ = nh_.createTimer(ros::Duration(options_.grid_publish_period),
+                                  &MappingNode::publishGrid, this);
   }
 
-  keyframe_sub_ = nh_.subscribe(pnh_.param<std::string>("keyframe_topic", "tracking_node/keyframe"),
-                                100, &MappingNode::onKeyFrame, this);
-  pose_sub_ = nh_.subscribe(pnh_.param<std::string>("pose_topic", "tracking_node/pose"), 100,
-                            &MappingNode::onPose, this);
-  update_sub_ =
-      nh_.subscribe(pnh_.param<std::string>("map_update_topic", "tracking_node/map_update"), 100,
-                    &MappingNode::onMapUpdate, this);
-  snapshot_sub_ =
-      nh_.subscribe(pnh_.param<std::string>("map_snapshot_topic", "tracking_node/map_snapshot"), 2,
-                    &MappingNode::onMapSnapshot, this);
-  resend_client_ = nh_.serviceClient<std_srvs::Trigger>(
-      pnh_.param<std::string>("resend_service", "tracking_node/resend_map"));
+  keyframe_sub_ = nh_.subscribe(options_.keyframe_topic, 100, &MappingNode::onKeyFrame, this);
+  pose_sub_ = nh_.subscribe(options_.pose_topic, 100, &MappingNode::onPose, this);
+  update_sub_ = nh_.subscribe(options_.map_update_topic, 100, &MappingNode::onMapUpdate, this);
+  snapshot_sub_ = nh_.subscribe(options_.map_snapshot_topic, 2, &MappingNode::onMapSnapshot, this);
+  resend_client_ = nh_.serviceClient<std_srvs::Trigger>(options_.resend_service);
   // Started after the tracker (a restart): what went by is not known from a gap until the next
   // keyframe, so the map is asked for once at the start (an empty one from a fresh tracker).
   startup_timer_ = nh_.createWallTimer(
@@ -143,13 +79,13 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   save_trajectory_srv_ =
       pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
   save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
-  tracker_save_map_client_ = nh_.serviceClient<SaveToPath>(
-      pnh_.param<std::string>("tracker_save_map_service", "tracking_node/save_map"));
+  tracker_save_map_client_ = nh_.serviceClient<SaveToPath>(options_.tracker_save_map_service);
   ROS_INFO_STREAM("mapping_node: keyframes from "
                   << keyframe_sub_.getTopic() << ", poses from " << pose_sub_.getTopic()
                   << ", map updates from " << update_sub_.getTopic() << "; tf "
-                  << (odom_frame_.empty() ? world_frame_ + " -> " + camera_frame_
-                                          : map_frame_ + " -> " + odom_frame_));
+                  << (options_.odom_frame.empty()
+                          ? options_.world_frame + " -> " + options_.camera_frame
+                          : options_.map_frame + " -> " + options_.odom_frame));
 }
 
 void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
@@ -344,96 +280,56 @@ void MappingNode::placeWorldAsSaved(const std::string& folder) {
     return;
   }
   T_map_world_ = *saved;
-  if (world_frame_ != map_frame_)
+  if (options_.world_frame != options_.map_frame)
     static_broadcaster_.sendTransform(
-        toTransformMsg(*T_map_world_, ros::Time::now(), map_frame_, world_frame_));
-  ROS_INFO_STREAM("the map's world placed in " << map_frame_ << " as saved in " << path);
+        toTransformMsg(*T_map_world_, ros::Time::now(), options_.map_frame, options_.world_frame));
+  ROS_INFO_STREAM("the map's world placed in " << options_.map_frame << " as saved in " << path);
 }
 
 // Without odometry the camera hangs from the world frame. With it (a robot), `map` starts where
 // odometry starts: T_map_world is the camera's pose in odom at the first tracked frame (the
 // robot's camera mounting comes in through its tf tree), and map -> odom absorbs the drift.
 void MappingNode::broadcastTf(const ros::Time& stamp, const Eigen::Isometry3d& T_world_camera) {
-  if (odom_frame_.empty()) {
+  const MappingNodeOptions& o = options_;
+  if (o.odom_frame.empty()) {
     tf_broadcaster_.sendTransform(
-        toTransformMsg(T_world_camera, stamp, world_frame_, camera_frame_));
+        toTransformMsg(T_world_camera, stamp, o.world_frame, o.camera_frame));
     return;
   }
   Eigen::Isometry3d T_odom_camera;
   try {
     T_odom_camera =
-        fromTransformMsg(tf_buffer_.lookupTransform(odom_frame_, camera_frame_, stamp).transform);
+        fromTransformMsg(tf_buffer_.lookupTransform(o.odom_frame, o.camera_frame, stamp).transform);
   } catch (const tf2::TransformException& e) {
     bad_input_.report("tf", std::string("no odom -> camera transform: ") + e.what());
     return;
   }
-  if (!T_map_world_) {
-    T_map_world_ = T_odom_camera * T_world_camera.inverse();
-    if (world_frame_ != map_frame_)
-      static_broadcaster_.sendTransform(
-          toTransformMsg(*T_map_world_, stamp, map_frame_, world_frame_));
+  Eigen::Isometry3d T_map_world;
+  bool placed_now = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!T_map_world_) {
+      T_map_world_ = T_odom_camera * T_world_camera.inverse();
+      placed_now = true;
+    }
+    T_map_world = *T_map_world_;
   }
-  const Eigen::Isometry3d T_map_odom = *T_map_world_ * T_world_camera * T_odom_camera.inverse();
-  tf_broadcaster_.sendTransform(toTransformMsg(T_map_odom, stamp, map_frame_, odom_frame_));
+  if (placed_now && o.world_frame != o.map_frame)
+    static_broadcaster_.sendTransform(
+        toTransformMsg(T_map_world, stamp, o.map_frame, o.world_frame));
+  const Eigen::Isometry3d T_map_odom = T_map_world * T_world_camera * T_odom_camera.inverse();
+  tf_broadcaster_.sendTransform(toTransformMsg(T_map_odom, stamp, o.map_frame, o.odom_frame));
 }
 
 void MappingNode::publishMap(const ros::Time& stamp) {
-  std::lock_guard<std::mutex> lock(mutex_);
   std_msgs::Header header;
   header.stamp = stamp;
-  header.frame_id = world_frame_;
-
-  sensor_msgs::PointCloud2 cloud;
-  cloud.header = header;
-  sensor_msgs::PointCloud2Modifier modifier(cloud);
-  modifier.setPointCloud2FieldsByString(1, "xyz");
-  modifier.resize(store_.points().size());
-  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z");
-  for (const auto& [id, p] : store_.points()) {
-    *x = static_cast<float>(p.position.x());
-    *y = static_cast<float>(p.position.y());
-    *z = static_cast<float>(p.position.z());
-    ++x, ++y, ++z;
-  }
-  points_pub_.publish(cloud);
-
-  visualization_msgs::Marker lines;
-  lines.header = header;
-  lines.ns = "map_lines";
-  lines.type = visualization_msgs::Marker::LINE_LIST;
-  lines.action = visualization_msgs::Marker::ADD;
-  lines.pose.orientation.w = 1.0;
-  lines.scale.x = 0.01;
-  lines.color.r = 0.1f;
-  lines.color.g = 0.6f;
-  lines.color.b = 1.0f;
-  lines.color.a = 1.0f;
-  for (const auto& [id, l] : store_.lines()) {
-    geometry_msgs::Point a, b;
-    a.x = l.start.x(), a.y = l.start.y(), a.z = l.start.z();
-    b.x = l.end.x(), b.y = l.end.y(), b.z = l.end.z();
-    lines.points.push_back(a);
-    lines.points.push_back(b);
-  }
-  if (lines.points.empty()) lines.action = visualization_msgs::Marker::DELETEALL;  // none yet
-  visualization_msgs::MarkerArray markers;
-  markers.markers.push_back(lines);
-  lines_pub_.publish(markers);
-
-  geometry_msgs::PoseArray keyframes;
-  keyframes.header = header;
-  nav_msgs::Path path;
-  path.header = header;
-  for (const auto& [id, kf] : store_.keyFrames()) {
-    keyframes.poses.push_back(toPoseMsg(kf.T_wc));
-    geometry_msgs::PoseStamped pose;
-    pose.header.frame_id = world_frame_;
-    pose.header.stamp.fromSec(kf.stamp);
-    pose.pose = keyframes.poses.back();
-    path.poses.push_back(pose);
-  }
-  keyframes_pub_.publish(keyframes);
-  path_pub_.publish(path);
+  header.frame_id = options_.world_frame;
+  std::lock_guard<std::mutex> lock(mutex_);
+  points_pub_.publish(toMapPointsMsg(store_.points(), header));
+  lines_pub_.publish(toMapLinesMsg(store_.lines(), header));
+  keyframes_pub_.publish(toKeyFramePosesMsg(store_.keyFrames(), header));
+  path_pub_.publish(toKeyFramePathMsg(store_.keyFrames(), header));
 }
 
 bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response) {
@@ -466,7 +362,7 @@ void MappingNode::publishDense(const ros::TimerEvent&) {
     return;
   std_msgs::Header header;
   header.stamp = ros::Time::now();
-  header.frame_id = world_frame_;
+  header.frame_id = options_.world_frame;
   // Only the snapshot under the maps' lock (a rebuild replaces the global cloud, never changes
   // it): the worker need not wait while the messages are built.
   const bool want_cloud = dense_cloud_pub_.getNumSubscribers() > 0;
@@ -495,7 +391,7 @@ std::string MappingNode::gridFrame(const OccupancyGrid& grid,
                                    Eigen::Isometry3d* T_frame_floor) const {
   *T_frame_floor = T_map_world ? Eigen::Isometry3d(*T_map_world * grid.floor().T_world_floor)
                                : grid.floor().T_world_floor;
-  return T_map_world ? map_frame_ : world_frame_;
+  return T_map_world ? options_.map_frame : options_.world_frame;
 }
 
 void MappingNode::publishGrid(const ros::TimerEvent&) {

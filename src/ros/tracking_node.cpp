@@ -14,11 +14,8 @@
 #include <sstream>
 
 #include "ply_slam/common/statistics.h"
-#include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/conversions.h"
-#include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/semantic/segmentation_image.h"
-#include "ply_slam/semantic/yolo_v8_seg.h"
 #include "ply_slam/system/tracking_image.h"
 
 namespace ply_slam {
@@ -30,35 +27,20 @@ bool calibrated(const sensor_msgs::CameraInfo& info) { return info.K[0] != 0.0; 
 
 }  // namespace
 
-TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNodeOptions options,
+                           TrackingBackEnd back_end)
     : nh_(nh),
       pnh_(pnh),
-      config_(configFromParams(pnh, "config")),
-      decoder_(pnh.param("depth_16u_scale", 0.001)) {
-  use_camera_info_ = pnh_.param("use_camera_info", true);
-  publish_images_ = pnh_.param("publish_images", true);
-  world_frame_ = pnh_.param<std::string>("world_frame", "map");
-  frame_queue_size_ = static_cast<size_t>(std::max(1, pnh_.param("frame_queue_size", 100)));
-  const int sync_queue = std::max(1, pnh_.param("sync_queue_size", 10));
-  unpaired_rgb_ = unpaired_depth_ = UnpairedImages(2 * static_cast<size_t>(sync_queue));
-  sync_slop_ = pnh_.param("sync_slop", 0.02);
-  flush_after_s_ = pnh_.param("sync_flush_after", 0.5);
-  map_folder_ = pnh_.param<std::string>("map", "");
-  localisation_only_ = pnh_.param("localisation_only", true);
-  mapping_thread_ = pnh_.param("mapping_thread", true);
-  // Said at the start, not at the first frame (the system is made then, from camera_info).
-  const std::filesystem::path map_file = std::filesystem::path(map_folder_) / System::kMapFileName;
-  if (!map_folder_.empty() && !std::filesystem::is_regular_file(map_file))
-    throw std::runtime_error("~map: no map file " + map_file.string());
-
-  if (!config_.segmentation.model_path.empty()) {
-    // Live mode (DESIGN.md): the network runs beside tracking on the newest frame; tracking
-    // takes its newest result carried to the current frame and never waits for it.
-    segmenter_ = std::make_unique<LiveSegmenter>(std::make_unique<YoloV8Seg>(config_.segmentation));
-    ROS_INFO_STREAM("segmentation: YOLOv8-seg " << config_.segmentation.model_path << ", live");
-  } else {
+      options_(std::move(options)),
+      back_end_(std::move(back_end)),
+      decoder_(options_.depth_16u_scale),
+      unpaired_rgb_(2 * static_cast<size_t>(options_.sync_queue_size)),
+      unpaired_depth_(2 * static_cast<size_t>(options_.sync_queue_size)) {
+  if (back_end_.segmenter)
+    ROS_INFO_STREAM("segmentation: YOLOv8-seg " << options_.config.segmentation.model_path
+                                                << ", live");
+  else
     ROS_INFO("segmentation: none (config segmentation.model is empty)");
-  }
 
   pose_pub_ = pnh_.advertise<geometry_msgs::PoseStamped>("pose", 10);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
@@ -71,37 +53,37 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
 
-  rgb_sub_.subscribe(nh_, pnh_.param<std::string>("rgb_topic", "rgb/image"), sync_queue);
-  depth_sub_.subscribe(nh_, pnh_.param<std::string>("depth_topic", "depth/image"), sync_queue);
+  const int sync_queue = options_.sync_queue_size;
+  rgb_sub_.subscribe(nh_, options_.rgb_topic, sync_queue);
+  depth_sub_.subscribe(nh_, options_.depth_topic, sync_queue);
   rgb_sub_.registerCallback(&TrackingNode::onRgb, this);
   depth_sub_.registerCallback(&TrackingNode::onDepth, this);
   sync_ = std::make_unique<message_filters::Synchronizer<SyncPolicy>>(SyncPolicy(sync_queue),
                                                                       rgb_sub_, depth_sub_);
-  sync_->setMaxIntervalDuration(ros::Duration(sync_slop_));
-  // The shortest time between two images of one stream: lets the synchroniser emit a pair as
-  // soon as no later message could pair better, instead of waiting for the next frame (the
-  // last frame of a bag would otherwise never be emitted). 0 = unknown.
-  const double min_period = pnh_.param("sync_min_period", 0.0);
+  sync_->setMaxIntervalDuration(ros::Duration(options_.sync_slop));
+  // Without the shortest period the synchroniser waits for the next frame to emit a pair (the
+  // last frame of a bag would never be emitted).
+  const double min_period = options_.sync_min_period;
   if (min_period > 0) {
     sync_->setInterMessageLowerBound(0, ros::Duration(min_period));
     sync_->setInterMessageLowerBound(1, ros::Duration(min_period));
   }
   sync_->registerCallback(&TrackingNode::onImages, this);
-  info_sub_ = nh_.subscribe(pnh_.param<std::string>("camera_info_topic", "rgb/camera_info"), 1,
-                            &TrackingNode::onCameraInfo, this);
-  if (flush_after_s_ > 0)
-    flush_timer_ = nh_.createWallTimer(ros::WallDuration(flush_after_s_ / 2),
+  info_sub_ = nh_.subscribe(options_.camera_info_topic, 1, &TrackingNode::onCameraInfo, this);
+  if (options_.sync_flush_after > 0)
+    flush_timer_ = nh_.createWallTimer(ros::WallDuration(options_.sync_flush_after / 2),
                                        [this](const ros::WallTimerEvent&) { flushStalledPair(); });
   worker_ = std::thread(&TrackingNode::work, this);
   ROS_INFO_STREAM("tracking_node: config "
-                  << config_.source_path << ", rgb " << rgb_sub_.getTopic() << ", depth "
+                  << options_.config.source_path << ", rgb " << rgb_sub_.getTopic() << ", depth "
                   << depth_sub_.getTopic() << ", camera_info " << info_sub_.getTopic()
-                  << (use_camera_info_ ? "" : " (ignored)") << ", sync queue " << sync_queue
-                  << " slop " << sync_slop_ << " s"
-                  << (map_folder_.empty()
+                  << (options_.use_camera_info ? "" : " (ignored)") << ", sync queue " << sync_queue
+                  << " slop " << options_.sync_slop << " s"
+                  << (options_.map.empty()
                           ? std::string()
-                          : ", map " + map_folder_ +
-                                (localisation_only_ ? " (localisation only)" : " (extended)")));
+                          : ", map " + options_.map +
+                                (options_.localisation_only ? " (localisation only)"
+                                                            : " (extended)")));
 }
 
 TrackingNode::~TrackingNode() {
@@ -118,7 +100,7 @@ TrackingNode::~TrackingNode() {
                   << ", depth " << depth_received_ - std::min<size_t>(depth_received_, paired)
                   << "), tracked " << tracked_ << ", lost " << lost_ << ", dropped while behind "
                   << behind_dropped_ << ", skipped bad " << bad_input_.total() << " ("
-                  << bad_input_.summary() << "), median " << upperMedian(total_ms_, 0.0)
+                  << bad_input_.summary() << "), median " << median(total_ms_, 0.0)
                   << " ms per frame");
 }
 
@@ -156,7 +138,7 @@ void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
 void TrackingNode::reportUnpaired(const std::string& what, double stamp) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(6) << what << " image stamped " << stamp << " had no "
-    << (what == "colour" ? "depth" : "colour") << " image within " << sync_slop_
+    << (what == "colour" ? "depth" : "colour") << " image within " << options_.sync_slop
     << " s; the synchroniser dropped it";
   bad_input_.report("unpaired", s.str());
 }
@@ -164,11 +146,12 @@ void TrackingNode::reportUnpaired(const std::string& what, double stamp) {
 // Runs on the spinner thread like the subscriber callbacks, so it needs no lock of its own.
 void TrackingNode::flushStalledPair() {
   if (!newest_rgb_ || !newest_depth_) return;
-  if ((ros::WallTime::now() - newest_arrival_).toSec() < flush_after_s_) return;
+  if ((ros::WallTime::now() - newest_arrival_).toSec() < options_.sync_flush_after) return;
   if (newest_rgb_->header.stamp <= last_paired_rgb_stamp_ ||
       newest_depth_->header.stamp <= last_paired_depth_stamp_)
     return;
-  if (std::abs((newest_rgb_->header.stamp - newest_depth_->header.stamp).toSec()) > sync_slop_)
+  if (std::abs((newest_rgb_->header.stamp - newest_depth_->header.stamp).toSec()) >
+      options_.sync_slop)
     return;
   ++flushed_;
   onImages(newest_rgb_, newest_depth_);
@@ -178,7 +161,7 @@ void TrackingNode::flushStalledPair() {
 // out (the last good one, or the config, stays), never handed to the tracker.
 void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
   if (calibrated(*info)) try {
-      cameraFromInfo(*info, config_.camera);
+      cameraFromInfo(*info, options_.config.camera);
     } catch (const std::invalid_argument& e) {
       bad_input_.report("camera_info", std::string(e.what()) + "; camera_info ignored");
       return;
@@ -242,7 +225,7 @@ void TrackingNode::enqueue(Job job) {
     std::lock_guard<std::mutex> lock(queue_mutex_);
     const auto frames =
         std::count_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
-    if (static_cast<size_t>(frames) >= frame_queue_size_) {
+    if (static_cast<size_t>(frames) >= options_.frame_queue_size) {
       queue_.erase(std::find_if(queue_.begin(), queue_.end(),
                                 [](const Job& j) { return j.rgb != nullptr; }));
       ++behind_dropped_;
@@ -293,53 +276,45 @@ void TrackingNode::work() {
 }
 
 void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
-  SystemConfig config = config_;
+  PinholeCamera camera = options_.config.camera;
   if (info && calibrated(*info)) {
-    config.camera = cameraFromInfo(*info, config.camera);
-    ROS_INFO_STREAM("intrinsics from camera_info: fx "
-                    << config.camera.fx << " fy " << config.camera.fy << " cx " << config.camera.cx
-                    << " cy " << config.camera.cy << ", " << config.camera.width << "x"
-                    << config.camera.height);
+    camera = cameraFromInfo(*info, camera);
+    ROS_INFO_STREAM("intrinsics from camera_info: fx " << camera.fx << " fy " << camera.fy << " cx "
+                                                       << camera.cx << " cy " << camera.cy << ", "
+                                                       << camera.width << "x" << camera.height);
   } else {
-    ROS_INFO_STREAM("intrinsics from the config: fx "
-                    << config.camera.fx << " fy " << config.camera.fy << " cx " << config.camera.cx
-                    << " cy " << config.camera.cy);
+    ROS_INFO_STREAM("intrinsics from the config: fx " << camera.fx << " fy " << camera.fy << " cx "
+                                                      << camera.cx << " cy " << camera.cy);
   }
-  if (!segmenter_) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
-  system_ = std::make_unique<System>(
-      config, mapping_thread_ ? MappingMode::kOwnThread : MappingMode::kInline);
-  if (!map_folder_.empty()) loadMap();
-}
-
-void TrackingNode::loadMap() {
   try {
-    system_->loadMap(map_folder_, localisation_only_);
+    system_ = back_end_.make_system(camera);
   } catch (const std::exception& e) {
-    map_failed_ = true;
+    start_failed_ = true;
     ROS_FATAL_STREAM("tracking_node: " << e.what());
     ros::shutdown();
     return;
   }
+  if (options_.map.empty()) return;
   ROS_INFO_STREAM("tracking_node: map "
-                  << map_folder_ << " loaded: " << system_->map().numKeyFrames() << " keyframes, "
+                  << options_.map << " loaded: " << system_->map().numKeyFrames() << " keyframes, "
                   << system_->map().numMapPoints() << " points; relocalising (no pose until then)");
   publishSnapshot();  // mapping_node shows and keeps the loaded map
 }
 
 void TrackingNode::track(const Image& rgb, const Image& depth) {
   sensor_msgs::CameraInfoConstPtr info;
-  if (use_camera_info_) {
+  if (options_.use_camera_info) {
     std::lock_guard<std::mutex> lock(info_mutex_);
     info = camera_info_;
   }
   const RgbdImages images = decoder_.decode(rgb, depth, info.get());
-  if (map_failed_) return;
+  if (start_failed_) return;
   if (!system_) startSystem(info.get());
-  if (map_failed_) return;
+  if (start_failed_) return;
   std::vector<Instance> instances;
-  if (segmenter_) {
-    segmenter_->submit(images);
-    instances = segmenter_->instancesFor(images);
+  if (back_end_.segmenter) {
+    back_end_.segmenter->submit(images);
+    instances = back_end_.segmenter->instancesFor(images);
   }
   const FrameResult result = system_->process(images, instances);
   if (total_ms_.size() >= 2000)  // the median is over recent frames; a live run has no end
@@ -356,7 +331,7 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
                            const std::vector<Instance>& instances, const FrameResult& result) {
   std_msgs::Header header;
   header.stamp = rgb.header.stamp;
-  header.frame_id = world_frame_;
+  header.frame_id = options_.world_frame;
   if (result.tracking.state == TrackingState::kOk) {
     geometry_msgs::PoseStamped pose;
     pose.header = header;
@@ -379,7 +354,7 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
     }
   }
   publishMapped(result.mapped);
-  if (!publish_images_) return;
+  if (!options_.publish_images) return;
   std_msgs::Header image_header = rgb.header;
   if (tracking_image_pub_.getNumSubscribers() > 0)
     tracking_image_pub_.publish(
@@ -397,11 +372,11 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
 void TrackingNode::publishMapped(const std::vector<MappedKeyFrame>& mapped) {
   for (const MappedKeyFrame& m : mapped) {
     if (m.packet) {
-      KeyFrameMsg keyframe = toMsg(*m.packet, world_frame_);
+      KeyFrameMsg keyframe = toMsg(*m.packet, options_.world_frame);
       keyframe.sequence = keyframes_++;
       keyframe_pub_.publish(keyframe);
     }
-    MapUpdateMsg update = toMsg(*m.map_update, world_frame_);
+    MapUpdateMsg update = toMsg(*m.map_update, options_.world_frame);
     update.sequence = updates_++;
     map_update_pub_.publish(update);
     loops_ += m.loop_correction != nullptr;
@@ -411,7 +386,7 @@ void TrackingNode::publishMapped(const std::vector<MappedKeyFrame>& mapped) {
 void TrackingNode::publishSnapshot() {
   MapSnapshot map;
   if (system_) map = {system_->sparseKeyFramePackets(), system_->cameraTrajectory()};
-  MapSnapshotMsg snapshot = toMsg(map, world_frame_);
+  MapSnapshotMsg snapshot = toMsg(map, options_.world_frame);
   snapshot.header.stamp = ros::Time::now();
   snapshot.next_keyframe_sequence = keyframes_;
   snapshot.next_update_sequence = updates_;
@@ -428,7 +403,7 @@ void TrackingNode::publishStats() {
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
-    << " median_ms=" << upperMedian(total_ms_, 0.0);
+    << " median_ms=" << median(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

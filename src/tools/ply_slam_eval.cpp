@@ -9,11 +9,13 @@
 #include <exception>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "ply_slam/common/command_line.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/eval/trajectory_association.h"
 #include "ply_slam/eval/trajectory_metrics.h"
@@ -23,7 +25,6 @@
 namespace {
 
 constexpr int kExitData = 1;
-constexpr int kExitUsage = 2;
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 const char* const kUsage =
@@ -43,10 +44,7 @@ const char* const kUsage =
     "are errors naming the file.\n"
     "Exit codes: 0 ok, 1 unreadable/malformed data or too few pairs, 2 usage error.\n";
 
-// Thrown for command-line mistakes; main turns it into exit code 2.
-struct UsageError {
-  std::string message;
-};
+using ply_slam::UsageError;
 
 struct Options {
   std::string command;
@@ -62,60 +60,72 @@ struct Options {
 double parseNumber(const std::string& option, const std::string& text, bool allow_zero) {
   const std::optional<double> value = ply_slam::parseRealNumber(text);
   if (!value || *value < 0.0 || (!allow_zero && *value == 0.0)) {
-    throw UsageError{option + " needs a " + (allow_zero ? "non-negative" : "positive") +
-                     " number, got '" + text + "'"};
+    throw UsageError(option + " needs a " + (allow_zero ? "non-negative" : "positive") +
+                     " number, got '" + text + "'");
   }
   return *value;
 }
 
 int parseFrameCount(const std::string& option, const std::string& text) {
   const std::optional<long> value = ply_slam::parseWholeNumber(text, 1, 1000000);
-  if (!value) throw UsageError{option + " needs a whole number of frames >= 1, got '" + text + "'"};
+  if (!value) throw UsageError(option + " needs a whole number of frames >= 1, got '" + text + "'");
   return static_cast<int>(*value);
 }
 
-Options parseArguments(const std::vector<std::string>& args) {
-  if (args.empty()) throw UsageError{"missing command 'ate' or 'rpe'"};
+// The command (ate or rpe) first, then its options and the two files.
+Options parseArguments(int argc, char** argv) {
   Options options;
-  options.command = args[0];
-  if (options.command.size() > 1 && options.command[0] == '-')
-    throw UsageError{"unknown option " + options.command +
-                     " (the command, ate or rpe, comes first)"};
-  if (options.command != "ate" && options.command != "rpe") {
-    throw UsageError{"unknown command '" + options.command + "' (expected 'ate' or 'rpe')"};
-  }
-  const bool is_rpe = options.command == "rpe";
   std::vector<std::string> positional;
-  for (size_t k = 1; k < args.size(); ++k) {
-    const std::string& arg = args[k];
-    auto value = [&]() -> const std::string& {
-      if (k + 1 >= args.size()) throw UsageError{arg + " needs a value"};
-      return args[++k];
-    };
-    if (arg == "--json") {
-      options.json = true;
-    } else if (arg == "--max-dt") {
-      options.max_dt = parseNumber(arg, value(), true);
-    } else if (arg == "--plot" && !is_rpe) {
-      options.plot_path = value();
-    } else if (arg == "--align-with" && !is_rpe) {
-      options.align_with = value();
-    } else if (arg == "--delta" && is_rpe) {
-      options.delta_frames = parseFrameCount(arg, value());
-    } else if (arg == "--delta-seconds" && is_rpe) {
-      options.delta_seconds = parseNumber(arg, value(), false);
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      throw UsageError{"unknown option " + arg + " for '" + options.command + "'"};
-    } else {
+  ply_slam::CommandLine line;
+  line.usage_text = kUsage;
+  line.flags = {"--json"};
+  line.options = {"--max-dt", "--plot", "--align-with", "--delta", "--delta-seconds"};
+  line.unknown_hint = [&]() -> std::string {
+    return options.command.empty() ? " (the command, ate or rpe, comes first)"
+                                   : " for '" + options.command + "'";
+  };
+  line.on_positional = [&](const std::string& arg) {
+    if (!options.command.empty()) {
       positional.push_back(arg);
+      return;
     }
-  }
+    if (arg != "ate" && arg != "rpe")
+      throw UsageError("unknown command '" + arg + "' (expected 'ate' or 'rpe')");
+    options.command = arg;
+  };
+  // The options of the other command, and any before the command, are unknown here.
+  const std::set<std::string> ate_only = {"--plot", "--align-with"},
+                              rpe_only = {"--delta", "--delta-seconds"};
+  auto check = [&](const std::string& arg) {
+    const std::set<std::string>& other = options.command == "ate" ? rpe_only : ate_only;
+    if (options.command.empty() || other.count(arg))
+      throw UsageError("unknown option " + arg + line.unknown_hint());
+  };
+  line.on_flag = [&](const std::string& arg) {
+    check(arg);
+    options.json = true;
+  };
+  line.on_option = [&](const std::string& arg, const std::string& value) {
+    check(arg);
+    if (arg == "--max-dt")
+      options.max_dt = parseNumber(arg, value, true);
+    else if (arg == "--plot")
+      options.plot_path = value;
+    else if (arg == "--align-with")
+      options.align_with = value;
+    else if (arg == "--delta")
+      options.delta_frames = parseFrameCount(arg, value);
+    else
+      options.delta_seconds = parseNumber(arg, value, false);
+  };
+  line.parse(argc, argv);
+  if (options.command.empty()) throw UsageError("missing command 'ate' or 'rpe'");
   if (positional.size() != 2) {
-    throw UsageError{"'" + options.command + "' needs exactly two files, GT and EST, got " +
-                     std::to_string(positional.size())};
+    throw UsageError("'" + options.command + "' needs exactly two files, GT and EST, got " +
+                     std::to_string(positional.size()));
   }
   if (options.delta_frames && options.delta_seconds) {
-    throw UsageError{"--delta and --delta-seconds exclude each other"};
+    throw UsageError("--delta and --delta-seconds exclude each other");
   }
   options.gt_path = positional[0];
   options.est_path = positional[1];
@@ -243,22 +253,7 @@ int runRpe(const Options& options, const ply_slam::Trajectory& gt,
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  if (std::count(args.begin(), args.end(), "-h") ||
-      std::count(args.begin(), args.end(), "--help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  Options options;
-  try {
-    options = parseArguments(args);
-  } catch (const UsageError& e) {
-    std::cerr << "ply_slam_eval: " << e.message << "\n\n" << kUsage;
-    return kExitUsage;
-  }
+int run(const Options& options) {
   ply_slam::Trajectory gt, est;
   try {
     gt = readNonEmpty(options.gt_path, "ground truth");
@@ -275,4 +270,11 @@ int main(int argc, char** argv) {
               << "' against '" << options.gt_path << "': " << e.what() << "\n";
     return kExitData;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ply_slam::runTool("ply_slam_eval", kUsage,
+                           [&] { return run(parseArguments(argc, argv)); });
 }

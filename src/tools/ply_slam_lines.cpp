@@ -50,14 +50,9 @@ struct Options {
 const char* const kUsage =
     "usage: ply_slam_lines --sequence DIR --config FILE [--max-frames N] [--offset K] [--json]\n";
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_lines: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 long parsePositive(const std::string& option, const std::string& text) {
   const std::optional<long> value = parseWholeNumber(text, 1, 1000000000L);
-  if (!value) usage(option + " needs a whole number >= 1, got '" + text + "'");
+  if (!value) throw UsageError(option + " needs a whole number >= 1, got '" + text + "'");
   return *value;
 }
 
@@ -78,9 +73,9 @@ Options parse(int argc, char** argv) {
     else
       o.offset = static_cast<int>(parsePositive(arg, value));
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
-  if (o.sequence.empty() || o.config.empty()) usage("--sequence and --config are required");
+  if (o.sequence.empty() || o.config.empty())
+    throw UsageError("--sequence and --config are required");
   return o;
 }
 
@@ -246,6 +241,5 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_lines", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_lines", kUsage, [&] { return run(parse(argc, argv)); });
 }

@@ -20,6 +20,7 @@
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/loop_ground_truth.h"
 #include "ply_slam/eval/pose_interpolation.h"
@@ -59,20 +60,16 @@ struct Options : RunArguments {
   LoopGroundTruthParams truth;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_loops: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (o.segmentation.take(arg, value) || o.take(arg, value)) return;
   if (arg == "--max-frames") {
     const auto n = parseWholeNumber(value, 1, 1000000000L);
-    if (!n) usage("--max-frames needs a whole number >= 1, got '" + value + "'");
+    if (!n) throw UsageError("--max-frames needs a whole number >= 1, got '" + value + "'");
     o.max_frames = *n;
   } else if (arg == "--min-gap-s") {
     const auto s = parseRealNumber(value);
-    if (!s || *s < 0) usage("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
+    if (!s || *s < 0)
+      throw UsageError("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
     o.truth.min_gap_s = *s;
   }
 }
@@ -88,13 +85,12 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   try {
     line.parse(argc, argv);
     o.segmentation.check();
     o.require();
   } catch (const std::invalid_argument& e) {
-    usage(e.what());
+    throw UsageError(e.what());
   }
   return o;
 }
@@ -324,12 +320,6 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
   return run;
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * v.size()))];
-}
-
 // One variant's decisions, as the precision-recall curve takes them.
 std::vector<ScoredDecision> decisionsOf(const std::vector<DecisionRow>& rows, size_t variant) {
   std::vector<ScoredDecision> out;
@@ -444,11 +434,11 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     << ", \"passed_true\": " << run.geometry_passed_true
     << ", \"passed_false\": " << run.geometry_passed_false << "},\n  \"timing_ms\": {"
     << "\"vocabulary_load\": " << jsonNumber(info.vocabulary_load_ms)
-    << ", \"add_keyframe_median\": " << jsonNumber(percentile(info.add_ms, 0.5))
-    << ", \"query_median\": " << jsonNumber(percentile(run.score_ms, 0.5))
-    << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0))
-    << ", \"geometric_check_median\": " << jsonNumber(percentile(run.check_ms, 0.5))
-    << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0)) << "}\n}\n";
+    << ", \"add_keyframe_median\": " << jsonNumber(median(info.add_ms, 0.0))
+    << ", \"query_median\": " << jsonNumber(median(run.score_ms, 0.0))
+    << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0, 0.0))
+    << ", \"geometric_check_median\": " << jsonNumber(median(run.check_ms, 0.0))
+    << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0, 0.0)) << "}\n}\n";
   file.commit();
 }
 
@@ -536,6 +526,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_loops", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_loops", kUsage, [&] { return run(parse(argc, argv)); });
 }

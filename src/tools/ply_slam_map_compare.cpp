@@ -49,11 +49,6 @@ const char* const kUsage =
     "usage: ply_slam_map_compare --sequence DIR --config FILE --keyframes FILE"
     " [--clock-offset auto|SECONDS] [--out DIR]\n";
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_map_compare: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (arg == "--sequence")
     o.sequence = value;
@@ -67,7 +62,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.fit_clock_offset = value == "auto";
     const std::optional<double> seconds = parseRealNumber(value);
     if (!o.fit_clock_offset && !seconds)
-      usage("--clock-offset needs auto or seconds, not " + value);
+      throw UsageError("--clock-offset needs auto or seconds, not " + value);
     if (seconds) o.clock_offset = *seconds;
   }
 }
@@ -80,10 +75,9 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
   if (o.sequence.empty() || o.config.empty() || o.keyframes.empty())
-    usage("--sequence, --config and --keyframes are required");
+    throw UsageError("--sequence, --config and --keyframes are required");
   return o;
 }
 
@@ -255,6 +249,5 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_map_compare", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_map_compare", kUsage, [&] { return run(parse(argc, argv)); });
 }

@@ -42,11 +42,6 @@ const char* const kUsage =
     "Runs OpenCV rgbd::RgbdOdometry (default parameters) frame to frame on a TUM folder\n"
     "and writes the chained camera poses as a TUM trajectory.\n";
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_rgbd_odometry: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 Options parseOptions(int argc, char** argv) {
   Options options;
   ply_slam::CommandLine line;
@@ -55,12 +50,11 @@ Options parseOptions(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     if (!options.take(arg, value)) options.timing_json = value;
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
   try {
     options.require();
   } catch (const std::invalid_argument& e) {
-    usage(e.what());
+    throw ply_slam::UsageError(e.what());
   }
   return options;
 }
@@ -166,6 +160,6 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parseOptions(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_rgbd_odometry", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_rgbd_odometry", kUsage,
+                           [&] { return run(parseOptions(argc, argv)); });
 }

@@ -28,11 +28,6 @@ const char* const kUsage =
     "usage: ply_slam_segment --sequence DIR --model ONNX --input WxH"
     " [--classes FILE] [--every N] [--save DIR]\n";
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_segment: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 struct Options {
   std::string sequence_dir, save_dir;
   YoloParams params;
@@ -48,11 +43,11 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.params.class_names_path = value;
   } else if (arg == "--input") {
     const auto size = parseImageSize(value);
-    if (!size) usage("--input needs WxH, e.g. 640x480, got '" + value + "'");
+    if (!size) throw UsageError("--input needs WxH, e.g. 640x480, got '" + value + "'");
     std::tie(o.params.input_width, o.params.input_height) = *size;
   } else if (arg == "--every") {
     const std::optional<long> n = parseWholeNumber(value, 1, 100000);
-    if (!n) usage("--every needs a whole number in [1, 100000], got '" + value + "'");
+    if (!n) throw UsageError("--every needs a whole number in [1, 100000], got '" + value + "'");
     o.every = static_cast<int>(*n);
   } else {
     o.save_dir = value;
@@ -67,76 +62,72 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
   if (o.sequence_dir.empty() || o.params.model_path.empty())
-    usage("--sequence and --model are required");
+    throw UsageError("--sequence and --model are required");
   return o;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
+int run(const Options& options) {
   const std::string& sequence_dir = options.sequence_dir;
   const std::string& save_dir = options.save_dir;
   const YoloParams& params = options.params;
   const int every = options.every;
 
-  try {
-    YoloV8Seg yolo(params);
-    const TumSequence sequence(sequence_dir);
-    const bool has_truth = fs::exists(fs::path(sequence_dir) / "instances.txt");
-    std::unique_ptr<MaskFolderSegmenter> truth;
-    if (has_truth) truth = std::make_unique<MaskFolderSegmenter>(sequence_dir);
-    if (!save_dir.empty()) fs::create_directories(save_dir);
+  YoloV8Seg yolo(params);
+  const TumSequence sequence(sequence_dir);
+  const bool has_truth = fs::exists(fs::path(sequence_dir) / "instances.txt");
+  std::unique_ptr<MaskFolderSegmenter> truth;
+  if (has_truth) truth = std::make_unique<MaskFolderSegmenter>(sequence_dir);
+  if (!save_dir.empty()) fs::create_directories(save_dir);
 
-    std::vector<double> ms, ious;
-    for (size_t i = 0; i < sequence.size(); i += every) {
-      const RgbdImages images = sequence.load(i, 5000.0);
-      Stopwatch watch;
-      const auto instances = yolo.segment(images);
-      ms.push_back(watch.elapsedMs());
-      if (truth) {
-        for (const auto& walker : truth->segment(images)) {
-          if (cv::countNonZero(walker.mask) < 0.02 * walker.mask.total()) continue;
-          double best = 0.0;
-          for (const auto& instance : instances) {
-            if (instance.class_name != walker.class_name) continue;
-            const double inter = cv::countNonZero(instance.mask & walker.mask);
-            const double uni = cv::countNonZero(instance.mask | walker.mask);
-            best = std::max(best, inter / uni);
-          }
-          ious.push_back(best);
-        }
-      }
-      if (!save_dir.empty()) {
-        cv::Mat overlay = images.rgb.clone();
-        for (const auto& instance : instances) {
-          const cv::Scalar colour =
-              instance.class_name == "person" ? cv::Scalar(0, 0, 255) : cv::Scalar(255, 160, 0);
-          overlay.setTo(colour, instance.mask);
-        }
-        cv::addWeighted(images.rgb, 0.5, overlay, 0.5, 0, overlay);
-        char name[64];
-        std::snprintf(name, sizeof(name), "%.6f.png", images.stamp);
-        writeImageFile((fs::path(save_dir) / name).string(), overlay);
-      }
-    }
-    std::cout << std::fixed << std::setprecision(1)
-              << fs::path(params.model_path).filename().string() << ": " << ms.size() << " frames, "
-              << upperMedian(ms, std::nan("")) << " ms median per frame";
+  std::vector<double> ms, ious;
+  for (size_t i = 0; i < sequence.size(); i += every) {
+    const RgbdImages images = sequence.load(i, 5000.0);
+    Stopwatch watch;
+    const auto instances = yolo.segment(images);
+    ms.push_back(watch.elapsedMs());
     if (truth) {
-      const long missed = std::count_if(ious.begin(), ious.end(), [](double x) { return x < 0.3; });
-      std::cout << std::setprecision(3) << ", person mask IoU median "
-                << upperMedian(ious, std::nan("")) << " over " << ious.size()
-                << " views (walkers > 2 % of the image), " << missed
-                << " of them missed (IoU < 0.3)";
+      for (const auto& walker : truth->segment(images)) {
+        if (cv::countNonZero(walker.mask) < 0.02 * walker.mask.total()) continue;
+        double best = 0.0;
+        for (const auto& instance : instances) {
+          if (instance.class_name != walker.class_name) continue;
+          const double inter = cv::countNonZero(instance.mask & walker.mask);
+          const double uni = cv::countNonZero(instance.mask | walker.mask);
+          best = std::max(best, inter / uni);
+        }
+        ious.push_back(best);
+      }
     }
-    std::cout << "\n";
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_segment: " << e.what() << "\n";
-    return 1;
+    if (!save_dir.empty()) {
+      cv::Mat overlay = images.rgb.clone();
+      for (const auto& instance : instances) {
+        const cv::Scalar colour =
+            instance.class_name == "person" ? cv::Scalar(0, 0, 255) : cv::Scalar(255, 160, 0);
+        overlay.setTo(colour, instance.mask);
+      }
+      cv::addWeighted(images.rgb, 0.5, overlay, 0.5, 0, overlay);
+      char name[64];
+      std::snprintf(name, sizeof(name), "%.6f.png", images.stamp);
+      writeImageFile((fs::path(save_dir) / name).string(), overlay);
+    }
   }
+  std::cout << std::fixed << std::setprecision(1) << fs::path(params.model_path).filename().string()
+            << ": " << ms.size() << " frames, " << median(ms, std::nan(""))
+            << " ms median per frame";
+  if (truth) {
+    const long missed = std::count_if(ious.begin(), ious.end(), [](double x) { return x < 0.3; });
+    std::cout << std::setprecision(3) << ", person mask IoU median " << median(ious, std::nan(""))
+              << " over " << ious.size() << " views (walkers > 2 % of the image), " << missed
+              << " of them missed (IoU < 0.3)";
+  }
+  std::cout << "\n";
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return runTool("ply_slam_segment", kUsage, [&] { return run(parse(argc, argv)); });
 }

@@ -39,16 +39,11 @@ const char* const kUsage =
     "DIR]\n"
     "       ply_slam_synth --benchmark [--scene S] [--walkers N] [--frames N] [--noise]\n";
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_synth: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 long parseInteger(const std::string& option, const std::string& text, long min, long max) {
   const std::optional<long> value = parseWholeNumber(text, min, max);
   if (!value)
-    usage(option + " needs an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
-          "], got '" + text + "'");
+    throw UsageError(option + " needs an integer in [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "], got '" + text + "'");
   return *value;
 }
 
@@ -61,7 +56,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.out = value;
   } else if (arg == "--scene") {
     if (!parseSceneKind(value, &o.synth.scene))
-      usage("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
+      throw UsageError("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
   } else if (arg == "--walkers") {
     o.synth.walkers =
         static_cast<int>(parseInteger(arg, value, 0, Scene::kFirstObjectInstance - 1));
@@ -85,9 +80,8 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
-  if (!o.benchmark && o.out.empty()) usage("--out DIR is required");
+  if (!o.benchmark && o.out.empty()) throw UsageError("--out DIR is required");
   if (!o.frames_given) o.synth.frames = defaultFrames(o.synth.scene);
   if (o.benchmark && !o.frames_given) o.synth.frames = kBenchmarkFrames;
   return o;
@@ -123,40 +117,43 @@ int benchmark(const SyntheticSequence& seq) {
   return 0;
 }
 
+int run(const Options& o) {
+  Stopwatch setup_clock;
+  const SyntheticSequence seq(o.synth);
+  const double setup_ms = setup_clock.elapsedMs();
+  if (o.benchmark) return benchmark(seq);
+
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec || !std::filesystem::is_directory(o.out)) {
+    std::cerr << "ply_slam_synth: cannot create the output folder " << o.out << ": "
+              << (ec ? ec.message() : "not a directory") << "\n";
+    return 1;
+  }
+  std::cout << "ply_slam_synth: " << seq.scene().name() << ", " << o.synth.walkers << " walkers, "
+            << seq.size() << " frames -> " << o.out << std::endl;
+  const SynthWriteStats s = writeSyntheticSequence(seq, o.out, [&](int i) {
+    if ((i + 1) % 50 == 0 || i + 1 == seq.size())
+      std::cout << "  frame " << i + 1 << "/" << seq.size() << std::endl;
+  });
+  std::cout << std::fixed << std::setprecision(1) << "scene setup " << setup_ms << " ms; "
+            << "render " << s.render_ms / s.frames << " ms/frame ("
+            << 1000.0 * s.frames / s.render_ms << " frames/s), PNG writing "
+            << s.write_ms / s.frames << " ms/frame; camera path " << std::setprecision(2)
+            << seq.path().meanLinearSpeed() << " m/s, "
+            << seq.path().meanAngularSpeed() * 180.0 / 3.14159265358979 << " deg/s\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
-  try {
-    Stopwatch setup_clock;
-    const SyntheticSequence seq(o.synth);
-    const double setup_ms = setup_clock.elapsedMs();
-    if (o.benchmark) return benchmark(seq);
-
-    std::error_code ec;
-    std::filesystem::create_directories(o.out, ec);
-    if (ec || !std::filesystem::is_directory(o.out)) {
-      std::cerr << "ply_slam_synth: cannot create the output folder " << o.out << ": "
-                << (ec ? ec.message() : "not a directory") << "\n";
-      return 1;
+  return runTool("ply_slam_synth", kUsage, [&] {
+    const Options o = parse(argc, argv);
+    try {
+      return run(o);
+    } catch (const std::invalid_argument& e) {  // options the scene cannot be made with
+      throw UsageError(e.what());
     }
-    std::cout << "ply_slam_synth: " << seq.scene().name() << ", " << o.synth.walkers << " walkers, "
-              << seq.size() << " frames -> " << o.out << std::endl;
-    const SynthWriteStats s = writeSyntheticSequence(seq, o.out, [&](int i) {
-      if ((i + 1) % 50 == 0 || i + 1 == seq.size())
-        std::cout << "  frame " << i + 1 << "/" << seq.size() << std::endl;
-    });
-    std::cout << std::fixed << std::setprecision(1) << "scene setup " << setup_ms << " ms; "
-              << "render " << s.render_ms / s.frames << " ms/frame ("
-              << 1000.0 * s.frames / s.render_ms << " frames/s), PNG writing "
-              << s.write_ms / s.frames << " ms/frame; camera path " << std::setprecision(2)
-              << seq.path().meanLinearSpeed() << " m/s, "
-              << seq.path().meanAngularSpeed() * 180.0 / 3.14159265358979 << " deg/s\n";
-    return 0;
-  } catch (const std::invalid_argument& e) {
-    usage(e.what());
-  } catch (const std::exception& e) {
-    std::cerr << "ply_slam_synth: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }

@@ -22,6 +22,7 @@
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/dense/grid_map_files.h"
@@ -99,14 +100,9 @@ const char* const kUsage =
 
 constexpr int kExitEvaluationFailed = 3;
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_tum: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 long parseCount(const std::string& option, const std::string& text) {
   const std::optional<long> value = parseWholeNumber(text, 0, 1000000000L);
-  if (!value) usage(option + " needs a whole number >= 0, got '" + text + "'");
+  if (!value) throw UsageError(option + " needs a whole number >= 0, got '" + text + "'");
   return *value;
 }
 
@@ -126,7 +122,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.map = value;
   } else if (arg == "--localisation-only") {
     if (value != "true" && value != "false")
-      usage("--localisation-only takes true or false, got '" + value + "'");
+      throw UsageError("--localisation-only takes true or false, got '" + value + "'");
     o.localisation_only = value == "true";
     o.localisation_only_given = true;
   }
@@ -137,10 +133,12 @@ void checkOptions(const Options& o) {
   if (!o.dynamic.empty()) try {
       parseDynamicMode(o.dynamic);
     } catch (const std::invalid_argument&) {
-      usage("unknown dynamic mode '" + o.dynamic + "' (off, geometric, semantic or full)");
+      throw UsageError("unknown dynamic mode '" + o.dynamic +
+                       "' (off, geometric, semantic or full)");
     }
-  if (o.live && o.segmentation.kind == "none") usage("--live needs a segmenter");
-  if (o.localisation_only_given && o.map.empty()) usage("--localisation-only needs --map");
+  if (o.live && o.segmentation.kind == "none") throw UsageError("--live needs a segmenter");
+  if (o.localisation_only_given && o.map.empty())
+    throw UsageError("--localisation-only needs --map");
   o.require();
 }
 
@@ -171,21 +169,13 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   try {
     line.parse(argc, argv);
     checkOptions(o);
   } catch (const std::invalid_argument& e) {
-    usage(e.what());
+    throw UsageError(e.what());
   }
   return o;
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::ceil(q * v.size())) - (q > 0));
-  return v[k];
 }
 
 double peakRssMb() {
@@ -338,8 +328,8 @@ Json finishDenseMaps(DenseMappingWorker& dense, const System& system, const Syst
             {"points", points},
             {"points_before_octree_filter", map.numUnfilteredPoints()},
             {"occupied_voxels", voxels.size()},
-            {"ms_per_keyframe_median", rounded(percentile(ms, 0.5))},
-            {"ms_per_keyframe_p95", rounded(percentile(ms, 0.95))},
+            {"ms_per_keyframe_median", rounded(median(ms, 0.0))},
+            {"ms_per_keyframe_p95", rounded(percentile(ms, 0.95, 0.0))},
             {"global_cloud_ms", rounded(global_ms)},
             {"max_queue", dense.maxQueueLength()},
             {"rejected_packets", dense.rejectedPackets()},
@@ -350,8 +340,8 @@ Json finishDenseMaps(DenseMappingWorker& dense, const System& system, const Syst
     reportLeftOutClouds(map, json);
     if (config.grid.enabled) grid = writeGrid(octree, config, trajectory, out, title, outputs);
     std::cout << "dense map " << points << " points, octree " << voxels.size()
-              << " occupied voxels; dense+octree ms per keyframe median " << percentile(ms, 0.5)
-              << ", p95 " << percentile(ms, 0.95) << "\n";
+              << " occupied voxels; dense+octree ms per keyframe median " << median(ms, 0.0)
+              << ", p95 " << percentile(ms, 0.95, 0.0) << "\n";
   });
   if (dense.rejectedPackets() > 0)
     std::cerr << "ply_slam_tum: dense maps left out " << dense.rejectedPackets()
@@ -488,7 +478,7 @@ Json summaryJson(const Options& options, const SystemConfig& config, const TumSe
                {"segmenter", options.segmentation.kind},
                {"dynamic_mode", config.dynamic.mode},
                {"dynamic_features_dropped", c.dynamic_features},
-               {"segmentation_ms_median", rounded(percentile(c.segment_ms, 0.5))}};
+               {"segmentation_ms_median", rounded(median(c.segment_ms, 0.0))}};
   return json;
 }
 
@@ -497,8 +487,8 @@ Json linesJson(const SystemConfig& config, const System& system, const RunCounts
           {"balance", config.lines.balance},
           {"map_lines", system.map().numMapLines()},
           {"line_inliers_mean", rounded(c.frames > 0 ? c.line_inliers / c.frames : 0.0)},
-          {"lines_ms_median", rounded(percentile(c.lines_ms, 0.5))},
-          {"lines_ms_p95", rounded(percentile(c.lines_ms, 0.95))}};
+          {"lines_ms_median", rounded(median(c.lines_ms, 0.0))},
+          {"lines_ms_p95", rounded(percentile(c.lines_ms, 0.95, 0.0))}};
 }
 
 Json classificationJson(const FeatureClassification& classification) {
@@ -655,8 +645,8 @@ int run(const Options& options) {
                     {"mask_age_mean_s", rounded(live->meanAgeSeconds())}};
   if (walker_masks) json["feature_classification"] = classificationJson(classification);
   json["lines"] = linesJson(config, system, counts);
-  json["tracking_ms_median"] = rounded(percentile(counts.total_ms, 0.5));
-  json["tracking_ms_p95"] = rounded(percentile(counts.total_ms, 0.95));
+  json["tracking_ms_median"] = rounded(median(counts.total_ms, 0.0));
+  json["tracking_ms_p95"] = rounded(percentile(counts.total_ms, 0.95, 0.0));
   json["peak_rss_mb"] = nullptr;  // set once the dense maps and the plot are done
   json["loops"] = loopsJson(system, corrections);
   json["mapping"] = {{"own_thread", options.realtime},
@@ -686,8 +676,8 @@ int run(const Options& options) {
   std::cout << "frames " << counts.frames << ", tracked " << trajectory.size() << ", lost "
             << counts.lost << ", keyframes " << system.map().numKeyFrames() << ", map points "
             << system.map().numMapPoints() << "\n"
-            << "tracking ms median " << percentile(counts.total_ms, 0.5) << ", p95 "
-            << percentile(counts.total_ms, 0.95) << "\n"
+            << "tracking ms median " << median(counts.total_ms, 0.0) << ", p95 "
+            << percentile(counts.total_ms, 0.95, 0.0) << "\n"
             << "outputs in " << fs::absolute(out).string() << "\n";
   if (!failure.empty()) {
     std::cerr << "ply_slam_tum: stopped after " << counts.frames << " frames: " << failure << "\n";
@@ -708,6 +698,5 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_tum", [&] { return run(options); });
+  return ply_slam::runTool("ply_slam_tum", kUsage, [&] { return run(parse(argc, argv)); });
 }

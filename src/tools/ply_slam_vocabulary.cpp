@@ -22,6 +22,7 @@
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
+#include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -52,16 +53,11 @@ struct Options {
   long keyframes = 2000;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ply_slam_vocabulary: " << error << "\n" << kUsage;
-  std::exit(2);
-}
-
 long wholeNumber(const std::string& option, const std::string& text, long min, long max) {
   const std::optional<long> value = parseWholeNumber(text, min, max);
   if (!value)
-    usage(option + " needs a whole number in [" + std::to_string(min) + ", " + std::to_string(max) +
-          "], got '" + text + "'");
+    throw UsageError(option + " needs a whole number in [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "], got '" + text + "'");
   return *value;
 }
 
@@ -70,7 +66,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.images = value;
   } else if (arg == "--kind") {
     o.kind = parseDescriptorKind(value);
-    if (!o.kind) usage("--kind needs orb or lbd, got '" + value + "'");
+    if (!o.kind) throw UsageError("--kind needs orb or lbd, got '" + value + "'");
   } else if (arg == "--out") {
     o.out = value;
   } else if (arg == "--config") {
@@ -92,7 +88,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
   } else if (arg == "--keyframes") {
     o.keyframes = wholeNumber(arg, value, 1, 1000000);
   } else {
-    usage("unknown option " + arg);
+    throw UsageError("unknown option " + arg);
   }
 }
 
@@ -109,12 +105,11 @@ Options parse(int argc, char** argv) {
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
   };
-  line.fail = [](const std::string& error) { usage(error); };
   line.parse(argc, argv);
-  if (o.images.empty()) usage("--images is required");
+  if (o.images.empty()) throw UsageError("--images is required");
   if (o.benchmark && (o.orb_vocabulary.empty() || o.lbd_vocabulary.empty()))
-    usage("--benchmark needs --orb-vocabulary and --lbd-vocabulary");
-  if (!o.benchmark && (!o.kind || o.out.empty())) usage("--kind and --out are required");
+    throw UsageError("--benchmark needs --orb-vocabulary and --lbd-vocabulary");
+  if (!o.benchmark && (!o.kind || o.out.empty())) throw UsageError("--kind and --out are required");
   if (o.kind) o.vocabulary.kind = *o.kind;
   return o;
 }
@@ -215,13 +210,11 @@ KeyFrameWords words(const FrameDescriptors& f, const BinaryVocabulary& orb,
 }
 
 std::string msText(const std::vector<double>& ms) {
-  std::vector<double> sorted = ms;
-  std::sort(sorted.begin(), sorted.end());
   double sum = 0.0;
   for (double v : ms) sum += v;
   std::ostringstream out;
   out << std::fixed << std::setprecision(3) << "mean " << sum / ms.size() << " ms, median "
-      << sorted[sorted.size() / 2] << " ms, max " << sorted.back() << " ms";
+      << median(ms) << " ms, max " << percentile(ms, 1.0) << " ms";
   return out.str();
 }
 
@@ -273,8 +266,8 @@ int benchmark(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options options = parse(argc, argv);
-  return ply_slam::runReportingErrors("ply_slam_vocabulary", [&] {
+  return ply_slam::runTool("ply_slam_vocabulary", kUsage, [&] {
+    const Options options = parse(argc, argv);
     return options.benchmark ? benchmark(options) : train(options);
   });
 }

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """rostest: starts the nodes by hand with their parameters set here. With world_frame unlike
 map_frame and world_in_map [] (mapping.launch's defaults but for the world frame) mapping_node
-must run; with three numbers it must stop saying what ~world_in_map needs; tracking_node without
-a config must stop saying so. Both once died without a word: the exception's message was logged
-after ROS had shut its logging down."""
+must run; with three numbers it must stop saying what ~world_in_map needs; either node without
+a config must stop saying so, the same way. Both once died without a word: the exception's
+message was logged after ROS had shut its logging down."""
+import os
 import subprocess
 import sys
 import time
@@ -11,8 +12,14 @@ import unittest
 
 import rospy
 import rostest
+import yaml
 
 import ros_test_support as support
+
+
+# The config as the launch files load it into ~config.
+with open(os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml")) as config_file:
+    CONFIG = yaml.safe_load(config_file)
 
 
 class NodeStart(unittest.TestCase):
@@ -25,8 +32,8 @@ class NodeStart(unittest.TestCase):
         return process
 
     def test_mapping_node_runs_without_world_in_map(self):
-        node = self.start("mapping_node", "no_placement", world_frame="ply_slam_world",
-                     world_in_map=[])
+        node = self.start("mapping_node", "no_placement", config=CONFIG,
+                          world_frame="ply_slam_world", world_in_map=[])
         time.sleep(3)
         alive = node.poll() is None
         node.terminate()
@@ -34,8 +41,8 @@ class NodeStart(unittest.TestCase):
         self.assertTrue(alive, "mapping_node stopped: " + output)
 
     def test_mapping_node_says_why_it_stops(self):
-        node = self.start("mapping_node", "bad_placement", world_frame="ply_slam_world",
-                     world_in_map=[1.0, 2.0, 3.0])
+        node = self.start("mapping_node", "bad_placement", config=CONFIG,
+                          world_frame="ply_slam_world", world_in_map=[1.0, 2.0, 3.0])
         output = node.communicate(timeout=30)[0]
         self.assertEqual(node.returncode, 1, output)
         self.assertIn("world_in_map needs 6 numbers", output)
@@ -44,7 +51,23 @@ class NodeStart(unittest.TestCase):
         node = self.start("tracking_node", "no_config")
         output = node.communicate(timeout=30)[0]
         self.assertEqual(node.returncode, 1, output)
-        self.assertIn("no such parameter", output)
+        self.assertIn("config /node_start/no_config/config: no such parameter", output)
+
+    def test_mapping_node_without_config_stops_as_tracking_node(self):
+        node = self.start("mapping_node", "no_mapping_config", world_frame="ply_slam_world")
+        output = node.communicate(timeout=30)[0]
+        self.assertEqual(node.returncode, 1, output)
+        self.assertIn("config /node_start/no_mapping_config/config: no such parameter", output)
+
+    def test_both_nodes_name_a_bad_parameter_alike(self):
+        tracker = self.start("tracking_node", "bad_map", config=CONFIG, map="/nonexistent")
+        mapper = self.start("mapping_node", "bad_period", config=CONFIG, dense_publish_period=0.0)
+        tracker_output = tracker.communicate(timeout=30)[0]
+        mapper_output = mapper.communicate(timeout=30)[0]
+        self.assertEqual(tracker.returncode, 1, tracker_output)
+        self.assertEqual(mapper.returncode, 1, mapper_output)
+        self.assertIn("tracking_node: ~map has no map file /nonexistent/", tracker_output)
+        self.assertIn("mapping_node: ~dense_publish_period must be > 0 s", mapper_output)
 
 
 if __name__ == "__main__":

@@ -244,5 +244,20 @@ TEST(RosConversions, OccupancyGridMessage) {
   expectSamePose(fromPoseMsg(msg.info.origin), corner);
 }
 
+// tf: T maps the child's coordinates into the parent's; the frames and stamp as given.
+TEST(RosConversions, TransformRoundTrip) {
+  const Eigen::Isometry3d T = somePose(0.7);
+  const geometry_msgs::TransformStamped t =
+      throughWire(toTransformMsg(T, ros::Time(12.5), "map", "odom"));
+  EXPECT_EQ(t.header.frame_id, "map");
+  EXPECT_EQ(t.child_frame_id, "odom");
+  EXPECT_EQ(t.header.stamp, ros::Time(12.5));
+  EXPECT_DOUBLE_EQ(t.transform.translation.x, T.translation().x());
+  expectSamePose(fromTransformMsg(t.transform), T);
+  geometry_msgs::Transform zero = t.transform;
+  zero.rotation.w = zero.rotation.x = zero.rotation.y = zero.rotation.z = 0.0;
+  EXPECT_THROW(fromTransformMsg(zero), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace ply_slam

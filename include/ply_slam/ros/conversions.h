@@ -2,6 +2,7 @@
 
 // The one place that knows both worlds (DESIGN.md): library structs <-> ROS messages, 1:1.
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <ply_slam/KeyFrameMsg.h>
 #include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
@@ -20,6 +21,12 @@ geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& T);
 // Throws std::invalid_argument when the quaternion is not finite or near zero length, or the
 // position is not finite.
 Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose);
+
+// T as the tf from `parent` to `child` (T maps child coordinates into parent ones).
+geometry_msgs::TransformStamped toTransformMsg(const Eigen::Isometry3d& T, const ros::Time& stamp,
+                                               const std::string& parent, const std::string& child);
+// Throws std::invalid_argument as fromPoseMsg does.
+Eigen::Isometry3d fromTransformMsg(const geometry_msgs::Transform& transform);
 
 // `base` with the intrinsics and size of a camera_info (plumb_bob / rational_polynomial: the
 // first five coefficients are OpenCV's k1 k2 p1 p2 k3). Throws std::invalid_argument naming

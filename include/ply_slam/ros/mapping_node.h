@@ -24,6 +24,8 @@
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/ros/bad_input_log.h"
+#include "ply_slam/ros/mapping_back_end.h"
+#include "ply_slam/ros/mapping_node_options.h"
 
 namespace ply_slam {
 
@@ -31,10 +33,16 @@ namespace ply_slam {
 // tracker's keyframes and map updates (MapStore), shows it (points, lines, keyframes, path, dense
 // cloud, semantic octree), broadcasts tf and saves trajectory and maps on request. Local bundle
 // adjustment, culling and loop closure run in the tracking process (System, in line); their
-// results arrive here as MapUpdates (README, "Layout").
+// results arrive here as MapUpdates (README, "Layout"). Its main reads the options and builds
+// the back-end (dense maps, grid).
+//
+// Threads: every subscriber, timer and service runs on ros::spin's one thread; the dense maps
+// build on the DenseMappingWorker's own thread behind its own lock (withMaps). mutex_ guards
+// what the callbacks share, so a multi-threaded spinner would stay correct too.
 class MappingNode {
  public:
-  MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOptions options,
+              MappingBackEnd back_end);
 
  private:
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
@@ -72,9 +80,11 @@ class MappingNode {
   void broadcastTf(const ros::Time& stamp, const Eigen::Isometry3d& T_world_camera);
 
   ros::NodeHandle nh_, pnh_;
-  std::string map_frame_, world_frame_, odom_frame_, base_frame_, camera_frame_;
+  const MappingNodeOptions options_;  // read-only after construction
 
-  // Guards store_, camera_trajectory_ and the counters: callbacks vs services.
+  // Guards the map's copy and what says how whole it is: store_, camera_trajectory_,
+  // map_updates_, loop_updates_, longest_callback_ms_, the two message sequences,
+  // resend_requested_, dense_keyframes_, dense_missing_ and T_map_world_.
   std::mutex mutex_;
   MapStore store_;
   // Every tracked frame from the tracker's ~pose, hung from the newest keyframe at its arrival
@@ -83,7 +93,7 @@ class MappingNode {
   static constexpr long kWorld = -1;
   size_t map_updates_ = 0, loop_updates_ = 0;
   double longest_callback_ms_ = 0.0;
-  BadInputLog bad_input_;
+  BadInputLog bad_input_;  // locks itself
 
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
   ros::ServiceClient resend_client_;
@@ -100,13 +110,14 @@ class MappingNode {
   ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
 
-  // Dense cloud and semantic octree, on their own thread; null when disabled.
+  // Dense cloud and semantic octree, on their own thread (behind withMaps); null when disabled.
   std::unique_ptr<DenseMappingWorker> dense_;
   ros::Publisher dense_cloud_pub_, octomap_markers_pub_, octomap_cloud_pub_;
   ros::Timer dense_timer_;
   // The 2D occupancy grid from the octree (config's grid section), latched on ~grid_map.
   std::unique_ptr<OccupancyGridBuilder> grid_builder_;  // null: no grid
-  std::shared_ptr<const OccupancyGrid> grid_;           // the last built, of octree grid_revision_
+  // The last grid built, of octree grid_revision_: within dense_->withMaps only (gridOf).
+  std::shared_ptr<const OccupancyGrid> grid_;
   std::uint64_t grid_revision_ = 0;
   ros::Publisher grid_pub_;
   ros::Timer grid_timer_;
@@ -116,7 +127,7 @@ class MappingNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   // Where the SLAM world lies in map: with odometry, the camera's odom pose at the first frame;
-  // without, ~world_in_map when given.
+  // without, ~world_in_map when given. Under mutex_.
   std::optional<Eigen::Isometry3d> T_map_world_;
   // ~map: T_map_world_ from the saved map's WorldInMapFile, when it has one.
   void placeWorldAsSaved(const std::string& folder);

@@ -22,9 +22,9 @@
 
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
+#include "ply_slam/ros/tracking_back_end.h"
+#include "ply_slam/ros/tracking_node_options.h"
 #include "ply_slam/ros/unpaired_images.h"
-#include "ply_slam/semantic/live_segmenter.h"
-#include "ply_slam/system/system.h"
 
 namespace ply_slam {
 
@@ -33,10 +33,16 @@ namespace ply_slam {
 // images, keyframes and what the mapping side changed (~map_update, for mapping_node). Frames are
 // tracked on a worker thread in arrival order so the subscribers never block; bad input is
 // counted, logged throttled and skipped. With ~map it starts in a saved map (System::loadMap);
-// ~save_map writes the map file (System::saveMap).
+// ~save_map writes the map file (System::saveMap). Its main reads the options and builds the
+// back-end (segmenter, how to make the System).
+//
+// Threads: the spinner (ros::spin, one thread: subscribers, the flush timer, services) and the
+// worker (work(): tracking, publishing what tracking made). What both touch is guarded below,
+// each by the one lock named beside it; everything else belongs to one of the two threads.
 class TrackingNode {
  public:
-  TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNodeOptions options,
+               TrackingBackEnd back_end);
   ~TrackingNode();
 
  private:
@@ -61,31 +67,26 @@ class TrackingNode {
   void publishMapped(const std::vector<MappedKeyFrame>& mapped);
   void work();
   void track(const Image& rgb, const Image& depth);
+  // The System from the back-end, with camera_info's intrinsics when `info` is calibrated; a
+  // System that cannot be made (e.g. ~map does not load) stops the node.
   void startSystem(const sensor_msgs::CameraInfo* info);
-  // ~map: the saved map into the new system; a map that cannot be loaded stops the node.
-  void loadMap();
   void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
                const FrameResult& result);
   void publishStats();
 
   ros::NodeHandle nh_, pnh_;
-  SystemConfig config_;
-  bool use_camera_info_ = true;
-  bool publish_images_ = true;
-  std::string world_frame_;
-  size_t frame_queue_size_ = 100;
-  std::string map_folder_;  // ~map: a saved map to localise in; "" = a new map
-  bool localisation_only_ = true;
-  bool mapping_thread_ = true;  // the mapping side beside tracking, not after each keyframe
+  const TrackingNodeOptions options_;  // read-only after construction: any thread
+  TrackingBackEnd back_end_;           // the worker uses it (segmenter, make_system)
+
+  // Worker thread only.
   size_t mapping_backlog_ = 0;  // keyframes the mapping thread had not finished (last looked)
   // How often the idle worker looks for the mapping thread's results.
   static constexpr std::chrono::milliseconds kMappedPollPeriod{100};
-  bool map_failed_ = false;  // ~map could not be loaded: no frame is tracked
+  bool start_failed_ = false;  // the System could not be made: no frame is tracked
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
-  std::unique_ptr<LiveSegmenter> segmenter_;  // null: no model configured
   RgbdMessageDecoder decoder_;
-  BadInputLog bad_input_;
+  BadInputLog bad_input_;  // any thread: locks itself
 
   message_filters::Subscriber<Image> rgb_sub_, depth_sub_;
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
@@ -93,31 +94,34 @@ class TrackingNode {
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
   ros::ServiceServer resend_srv_, save_map_srv_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
-  nav_msgs::Path path_;
+  nav_msgs::Path path_;  // worker thread only, as last_path_pose_ and total_ms_
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();
   static constexpr size_t kMaxPathPoses = 20000;
 
-  // The synchroniser emits a pair only once a later message proves no better match can come,
-  // so the last pair of a stream (a bag's last frame) would wait for ever. When the stream has
-  // been quiet for flush_after_s_ the newest unpaired rgb + depth are tracked as a pair.
-  double sync_slop_ = 0.02, flush_after_s_ = 0.5;
+  // Spinner thread only, down to the unpaired images. The synchroniser emits a pair only once a
+  // later message proves no better match can come, so the last pair of a stream (a bag's last
+  // frame) would wait for ever. When the stream has been quiet for options_.sync_flush_after the
+  // newest unpaired rgb + depth are tracked as a pair.
   sensor_msgs::ImageConstPtr newest_rgb_, newest_depth_;
   ros::WallTime newest_arrival_;
   ros::Time last_paired_rgb_stamp_, last_paired_depth_stamp_;
   ros::WallTimer flush_timer_;
-  UnpairedImages unpaired_rgb_{20}, unpaired_depth_{20};  // sized from the sync queue
+  UnpairedImages unpaired_rgb_, unpaired_depth_;  // sized from the sync queue
 
-  std::mutex info_mutex_;
-  sensor_msgs::CameraInfoConstPtr camera_info_;
+  // The newest camera_info: set by the spinner, read by the worker at each frame.
+  std::mutex info_mutex_;                        // guards camera_info_
+  sensor_msgs::CameraInfoConstPtr camera_info_;  // under info_mutex_
 
-  std::mutex queue_mutex_;
-  std::condition_variable queue_cv_;
-  std::deque<Job> queue_;
-  bool stopping_ = false;
+  // The jobs from the spinner to the worker (frames, ~resend_map, ~save_map) and the stop.
+  std::mutex queue_mutex_;            // guards queue_ and stopping_
+  std::condition_variable queue_cv_;  // queue_ grew or stopping_ was set
+  std::deque<Job> queue_;             // under queue_mutex_
+  bool stopping_ = false;             // under queue_mutex_
   std::thread worker_;
 
-  // Counters for ~stats and the shutdown report; keyframes_ and updates_ also number the
-  // keyframe and map-update messages (a mapper finds what it missed from the gaps).
+  // Counters for ~stats and the shutdown report (atomic: counted on one thread, read on both);
+  // keyframes_ and updates_ also number the keyframe and map-update messages (a mapper finds
+  // what it missed from the gaps).
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
       updates_{0}, loops_{0};

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+
+#include "ply_slam/common/config.h"
+
+namespace ply_slam {
+
+// mapping_node's private parameters, read in one place (mappingNodeOptionsFromParams).
+// launch/mapping.launch states each one with its default; the initialisers here are the
+// fallbacks for a node started without it.
+struct MappingNodeOptions {
+  SystemConfig config;  // ~config: required, as tracking_node's (dense, grid, dynamic sections)
+  // tf frames, without leading slashes. world_frame: the tracker's poses and the map (fallback:
+  // map_frame); odom_frame "" = no odometry.
+  std::string map_frame = "map";
+  std::string world_frame;
+  std::string odom_frame;
+  std::string camera_frame = "camera_color_optical_frame";
+  // ~world_in_map (x y z yaw pitch roll, m and rad, as tf2_ros static_transform_publisher): a
+  // fixed placement of the world in map_frame, e.g. to show the optical-frame world of a TUM bag
+  // upright. Only without odometry and with world_frame unlike map_frame; [] = none.
+  std::optional<Eigen::Isometry3d> world_in_map;
+  std::string map;  // a saved map being localised in: its world_in_map.txt places the world
+  double dense_publish_period = 2.0;  // s, > 0
+  double grid_publish_period = 2.0;   // s, > 0
+  std::string keyframe_topic = "tracking_node/keyframe";
+  std::string pose_topic = "tracking_node/pose";
+  std::string map_update_topic = "tracking_node/map_update";
+  std::string map_snapshot_topic = "tracking_node/map_snapshot";
+  std::string resend_service = "tracking_node/resend_map";
+  std::string tracker_save_map_service = "tracking_node/save_map";
+};
+
+// Throws ConfigError for a missing or bad ~config (as configFromParams) and std::invalid_argument
+// "~NAME ..." for a bad parameter (badParam).
+MappingNodeOptions mappingNodeOptionsFromParams(const ros::NodeHandle& pnh);
+
+}  // namespace ply_slam
