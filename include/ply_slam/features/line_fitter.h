@@ -22,10 +22,12 @@ namespace ply_slam {
 // σ_Z²(Z))); two-point RANSAC with a Mahalanobis inlier test (chi2_inlier); PCA on the largest
 // inlier set; endpoints at the extreme inlier projections; accepted when
 // inliers / (N + 1) > Th1 (min_inlier_ratio) and the 3D length > Th2 (min_length_m).
-// Two additions, both parameters: where a sample's depth is invalid, the nearest valid depth
-// up to depth_search_px across the line; refit_rounds re-selections of the inliers against
-// the PCA line; and the accepted line's depth re-read from the surfaces beside it
-// (LineDepthRefiner, surface_band_px). refit_rounds = surface_band_px = 0: the paper's fit.
+// Additions: each sample's depth comes from depthNear (at an occluding edge the nearer side's,
+// always; where the depth is invalid, the nearest valid one up to depth_search_px across the
+// line); refit_rounds re-selections of the inliers against the PCA line; and the accepted
+// line's depth re-read from the surfaces beside it (LineDepthRefiner, surface_band_px).
+// depth_search_px = refit_rounds = surface_band_px = 0: the paper's fit but for the
+// nearer-side read at occluding edges.
 // fitEndpoints is the "traditional" method: the two endpoints back-projected with their own
 // depth (found the same way), the same acceptance with the two endpoints as its samples.
 // Not thread-bound: const, no state per call.

@@ -16,7 +16,8 @@ using BowWeights = std::map<unsigned, double>;
 // weights normalised to a distribution, p_w = |v_w| / sum |v|, H = -sum p_w ln p_w. A frame
 // whose features fall into many distinct, evenly weighted words carries more information and
 // gets more say in S_pl; one word or none gives 0. The base of the log cancels in the weights.
-// Works with any map-like container of (word, weight) pairs, e.g. a later BowVector type.
+// Works with any container of (word, weight) pairs: BowVector (bow_vector.h) in LoopDetector,
+// BowWeights in the tests.
 template <typename BowVector>
 double bowEntropy(const BowVector& bow) {
   double sum = 0.0;

@@ -40,9 +40,10 @@ struct PoseOptimizerParams {
   double function_tolerance = 1e-3;
 };
 
-// Camera pose from point correspondences with Ceres: whitened reprojection error (plus a
-// depth residual where the pixel has depth), Huber kernel, and rounds that re-classify
-// every observation as inlier or outlier against the chi-square bounds.
+// Camera pose from point (and, in the second overload, line) correspondences with Ceres:
+// whitened reprojection error (plus a depth residual where the pixel has depth), Huber
+// kernel, and rounds that re-classify every observation as inlier or outlier against the
+// chi-square bounds.
 class PoseOptimizer {
  public:
   PoseOptimizer(const PinholeCamera& camera, const PoseOptimizerParams& params);
