@@ -126,6 +126,8 @@ void DynamicRejector::labelByInstances(const FrameFeatures& current,
                                        std::vector<int>& label,
                                        std::map<int, ClassMotion>& motion) const {
   for (const auto& instance : instances) motion[instance.id] = motionOf(instance.class_name);
+  // A feature takes the first instance whose mask holds it: the segmenter's detections come
+  // before those InstanceMemory carried on, so what this frame shows wins over a guess.
   for (size_t k = 0; k < feature_of.size(); ++k) {
     const cv::Point2f& pt = current.keypoints[feature_of[k]].pt;
     for (const auto& instance : instances)
