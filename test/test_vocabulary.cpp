@@ -12,7 +12,7 @@
 
 #include "loop_test_data.h"
 #include "ply_slam/loop/binary_vocabulary.h"
-#include "ply_slam/loop/hamming.h"
+#include "ply_slam/common/hamming.h"
 
 namespace ply_slam {
 namespace {

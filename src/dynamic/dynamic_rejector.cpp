@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <limits>
 #include <opencv2/core.hpp>
-#include <opencv2/core/hal/hal.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "ply_slam/common/hamming.h"
 #include "ply_slam/dynamic/depth_surfaces.h"
 #include "ply_slam/features/best_two.h"
 
@@ -83,8 +83,8 @@ std::vector<FeatureCorrespondence> DynamicRejector::correspondences(
     BestTwo two;
     for (size_t i : current.featuresInArea(uv.x(), uv.y(), radius, level - 1, level + 1))
       two.offer(
-          cv::hal::normHamming(prev.descriptors.ptr(static_cast<int>(j)),
-                               current.descriptors.ptr(static_cast<int>(i)), prev.descriptors.cols),
+          hammingDistance(prev.descriptors.ptr(static_cast<int>(j)),
+                          current.descriptors.ptr(static_cast<int>(i)), prev.descriptors.cols),
           static_cast<long>(i));
     if (!two.accept(params_.max_descriptor_distance, kRatio)) continue;
     const auto i1 = static_cast<size_t>(two.index);

@@ -1,11 +1,11 @@
 #include "ply_slam/features/line_matcher.h"
 
+#include "ply_slam/common/hamming.h"
 #include "ply_slam/features/best_two.h"
 
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <opencv2/core/hal/hal.hpp>
 
 namespace ply_slam {
 
@@ -15,7 +15,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinProjectionDepth = 0.05;  // m; endpoints nearer (or behind) do not project
 
 // Hamming distance of two 32-byte LBD rows (OpenCV's, vectorised at run time).
-int hamming(const uchar* a, const uchar* b) { return cv::hal::normHamming(a, b, 32); }
+int hamming(const uchar* a, const uchar* b) { return hammingDistance(a, b, 32); }  // LBD: 32 bytes
 
 }  // namespace
 

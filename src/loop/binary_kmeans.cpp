@@ -4,7 +4,7 @@
 #include <climits>
 #include <cstring>
 
-#include "ply_slam/loop/hamming.h"
+#include "ply_slam/common/hamming.h"
 
 namespace ply_slam {
 

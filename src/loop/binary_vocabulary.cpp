@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "ply_slam/loop/hamming.h"
+#include "ply_slam/common/hamming.h"
 #include "ply_slam/loop/vocabulary_file.h"
 #include "ply_slam/loop/vocabulary_trainer.h"
 

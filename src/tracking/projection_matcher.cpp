@@ -1,5 +1,6 @@
 #include "ply_slam/tracking/projection_matcher.h"
 
+#include "ply_slam/common/hamming.h"
 #include "ply_slam/features/best_two.h"
 
 #include <cmath>
@@ -8,11 +9,7 @@
 namespace ply_slam {
 
 int descriptorDistance(const cv::Mat& a, const cv::Mat& b) {
-  const uint64_t* pa = a.ptr<uint64_t>();
-  const uint64_t* pb = b.ptr<uint64_t>();
-  int distance = 0;
-  for (int i = 0; i < 4; ++i) distance += __builtin_popcountll(pa[i] ^ pb[i]);
-  return distance;
+  return hammingDistance(a.ptr<uint8_t>(), b.ptr<uint8_t>(), a.cols);
 }
 
 bool ProjectionMatcher::occluded(const Frame& frame, const Eigen::Vector2d& uv,
