@@ -35,7 +35,7 @@ const char* const kUsage =
 
 struct Options {
   std::string sequence_dir, save_dir;
-  YoloParams params;
+  YoloOptions params;
   int every = 1;
 };
 
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
   const std::string& sequence_dir = options.sequence_dir;
   const std::string& save_dir = options.save_dir;
-  const YoloParams& params = options.params;
+  const YoloOptions& params = options.params;
   const int every = options.every;
 
   try {
