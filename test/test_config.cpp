@@ -602,6 +602,33 @@ TEST_F(ConfigFileTest, MapperOptionsFollowTheirSections) {
             config.loop_correction.global_ba_iterations);
 }
 
+// The tuning constants that were written into the tracker and the landmark fuser: options with
+// those values, read from their sections.
+TEST_F(ConfigFileTest, FormerConstantsAreOptions) {
+  const std::string base = kValidYaml;
+  const SystemConfig defaults = loadConfig(write("defaults.yaml", base));
+  EXPECT_EQ(defaults.tracking.pnp_min_matches, 15);
+  EXPECT_DOUBLE_EQ(defaults.tracking.max_velocity_gap_s, 0.2);
+  EXPECT_DOUBLE_EQ(defaults.mapping.fuse_radius_px, 3.0);
+  EXPECT_EQ(defaults.mapping.fuse_max_descriptor_distance, 50);
+  const SystemConfig config = loadConfig(write(
+      "fuse.yaml", base + "mapping:\n  fuse_radius_px: 2.5\n  fuse_max_descriptor_distance: 40\n"));
+  EXPECT_DOUBLE_EQ(config.mapping.fuse_radius_px, 2.5);
+  EXPECT_EQ(config.mapping.fuse_max_descriptor_distance, 40);
+  EXPECT_EQ(loadConfig(writeEdited("pnp.yaml", "  nn_ratio: 0.9\n",
+                                   "  nn_ratio: 0.9\n  pnp_min_matches: 20\n"))
+                .tracking.pnp_min_matches,
+            20);
+  expectConfigError(write("dist.yaml", base + "mapping:\n  fuse_max_descriptor_distance: 300\n"),
+                    {"mapping.fuse_max_descriptor_distance"});
+  expectConfigError(
+      writeEdited("pnp_bad.yaml", "  nn_ratio: 0.9\n", "  nn_ratio: 0.9\n  pnp_min_matches: 3\n"),
+      {"tracking.pnp_min_matches", "must be >= 4"});
+  expectConfigError(
+      writeEdited("gap.yaml", "  nn_ratio: 0.9\n", "  nn_ratio: 0.9\n  max_velocity_gap_s: 0\n"),
+      {"tracking.max_velocity_gap_s", "must be > 0"});
+}
+
 // Found by fuzz/fuzz_config: a list or map as a key ("? " form) threw yaml-cpp's
 // TypedBadConversion out of loadConfig instead of a ConfigError naming the section.
 TEST(ConfigText, AKeyThatIsNotANameIsAConfigError) {

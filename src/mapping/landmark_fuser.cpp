@@ -10,9 +10,6 @@
 namespace ply_slam {
 namespace {
 
-constexpr double kRadiusPx = 3.0;  // search radius at level 0 around the projection
-constexpr int kMaxDistance = 50;   // Hamming: stricter than tracking, a merge is permanent
-
 bool observedBy(const MapPoint& p, const KeyFrame* kf) {
   for (const auto& o : p.observers)
     if (o.keyframe == kf) return true;
@@ -26,7 +23,9 @@ LandmarkFuser::LandmarkFuser(const PinholeCamera& camera, const OrbOptions& orb,
     : camera_(camera),
       num_levels_(orb.num_levels),
       log_scale_(std::log(orb.scale_factor)),
-      chi2_outlier_(options.chi2_outlier) {}
+      chi2_outlier_(options.chi2_outlier),
+      radius_px_(options.fuse_radius_px),
+      max_distance_(options.fuse_max_descriptor_distance) {}
 
 int LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
                         const std::vector<KeyFrame*>& neighbours) const {
@@ -69,7 +68,7 @@ int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
     int best = std::numeric_limits<int>::max();
     long best_index = -1;
     for (size_t i :
-         f.featuresInArea(uv.x(), uv.y(), kRadiusPx * (*f.scales)[level], level - 1, level)) {
+         f.featuresInArea(uv.x(), uv.y(), radius_px_ * (*f.scales)[level], level - 1, level)) {
       // Geometric agreement first: reprojection (and depth where measured) within 95 %.
       const double sigma = f.scale(i);
       double e2 = (f.undistorted[i] - uv).squaredNorm() / (sigma * sigma);
@@ -86,7 +85,7 @@ int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
         best_index = static_cast<long>(i);
       }
     }
-    if (best_index < 0 || best > kMaxDistance) continue;
+    if (best_index < 0 || best > max_distance_) continue;
 
     const auto existing = target.map_points[best_index];
     if (!existing || existing->bad) {

@@ -10,9 +10,6 @@
 namespace ply_slam {
 namespace {
 
-constexpr int kMinPnpMatches = 15;
-constexpr double kMaxVelocityGap = 0.2;  // s; beyond, the last motion says little
-
 PoseOptimizerParams optimizerParams(const TrackingOptions& t) {
   PoseOptimizerParams p;
   p.chi2_pixel = t.chi2_outlier;
@@ -94,7 +91,7 @@ TrackingResult Tracker::track(Frame& frame) {
       // A velocity needs two consecutive tracked frames close enough in time (none before the
       // first relocalisation in a loaded map).
       const double dt = last_frame_ ? frame.stamp - last_frame_->stamp : 0.0;
-      has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= kMaxVelocityGap;
+      has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= options_.max_velocity_gap_s;
       if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
@@ -190,7 +187,8 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
     points.push_back(p);
     descriptors.push_back(p->descriptor);
   }
-  if (static_cast<int>(points.size()) < kMinPnpMatches || frame.features.size() == 0) return false;
+  if (static_cast<int>(points.size()) < options_.pnp_min_matches || frame.features.size() == 0)
+    return false;
 
   cv::BFMatcher bf(cv::NORM_HAMMING);
   std::vector<std::vector<cv::DMatch>> knn;
@@ -207,14 +205,14 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
     image.emplace_back(uv.x(), uv.y());
     pairs.emplace_back(m[0].queryIdx, m[0].trainIdx);
   }
-  if (static_cast<int>(object.size()) < kMinPnpMatches) return false;
+  if (static_cast<int>(object.size()) < options_.pnp_min_matches) return false;
 
   cv::Mat rvec, tvec;
   std::vector<int> inliers;
   const bool solved = cv::solvePnPRansac(
       object, image, cv::Mat(camera_.K()), cv::noArray(), rvec, tvec, false,
       options_.pnp_iterations, options_.pnp_reprojection_px, 0.99, inliers, cv::SOLVEPNP_EPNP);
-  if (!solved || static_cast<int>(inliers.size()) < kMinPnpMatches) return false;
+  if (!solved || static_cast<int>(inliers.size()) < options_.pnp_min_matches) return false;
 
   cv::Mat R;
   cv::Rodrigues(rvec, R);
@@ -226,7 +224,7 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
   frame.T_cw.translation() = t_eigen;
   frame.clearMatches();
   for (int k : inliers) frame.map_points[pairs[k].first] = points[pairs[k].second];
-  return optimizePose(frame) >= kMinPnpMatches;
+  return optimizePose(frame) >= options_.pnp_min_matches;
 }
 
 std::vector<std::shared_ptr<KeyFrame>> Tracker::relocalisationOrder(const Frame& frame) const {

@@ -31,6 +31,8 @@ class LandmarkFuser {
   const int num_levels_;
   const double log_scale_;
   const double chi2_outlier_;
+  const double radius_px_;  // at level 0
+  const int max_distance_;
 };
 
 }  // namespace ply_slam

@@ -23,6 +23,11 @@ struct LocalMappingOptions {
   // 2-DoF outlier bound of an observation (the 3-DoF one with depth, withDepthDof). Loaded from
   // tracking.chi2_outlier: a point the tracker keeps is not an outlier here.
   double chi2_outlier = kChiSquare95TwoDof;
+  // Landmark fusion: a landmark is looked for within this radius (px at pyramid level 0, scaled
+  // with the level) of its projection, and taken below this Hamming distance: stricter than
+  // tracking's, a merge is permanent.
+  double fuse_radius_px = 3.0;
+  int fuse_max_descriptor_distance = 50;
   SolverOptions bundle_solver = bundleSolverDefaults();  // the `mapping:` section's bundle_solver
 };
 

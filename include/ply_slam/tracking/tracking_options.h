@@ -25,6 +25,10 @@ struct TrackingOptions {
   double max_prediction_error = 0.15;
   int pnp_iterations = 200;  // RANSAC iterations when projection matching fails
   double pnp_reprojection_px = 4.0;
+  int pnp_min_matches = 15;  // PnP (and relocalisation) needs this many matches, then inliers
+  // s; a frame further than this from the last tracked one predicts no motion: beyond, the
+  // last motion says little.
+  double max_velocity_gap_s = 0.2;
   double max_point_depth = 6.0;  // m; points beyond are not mapped (depth noise grows as Z^2)
   SolverOptions pose_solver = poseSolverDefaults();  // each round of pose optimisation
 };
