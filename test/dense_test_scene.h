@@ -26,8 +26,8 @@ inline PinholeCamera denseTestCamera() {
 }
 
 // Dense parameters of the tests: every `stride`-th pixel, voxels of `voxel_size`.
-inline DenseParams denseTestParams(int stride, double voxel_size) {
-  DenseParams p;
+inline DenseOptions denseTestParams(int stride, double voxel_size) {
+  DenseOptions p;
   p.stride = stride;
   p.voxel_size = voxel_size;
   p.min_depth = 0.3;

@@ -23,7 +23,7 @@ TEST(BonnCrowd, OfflineYoloFullTracksAmongPeople) {
   PLY_SLAM_REQUIRE_SHARED(model);
   SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/bonn.yaml");
   config.dense.enabled = false;  // the trajectory is what is measured here
-  YoloParams yolo_params = config.segmentation;
+  YoloOptions yolo_params = config.segmentation;
   yolo_params.model_path = model;
   yolo_params.class_names_path = test::sharedPath("models/coco.names");
   yolo_params.input_width = 640;
@@ -52,7 +52,7 @@ TEST(BonnCrowd, GeometryAloneTracksAmongPeople) {
   SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/bonn.yaml");
   config.dense.enabled = false;
   config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
-  ASSERT_EQ(config.dynamic.mode, "geometric");
+  ASSERT_EQ(config.dynamic.mode, DynamicMode::kGeometric);
   const TumSequence sequence(folder);
   System system(config);
   int lost = 0;

@@ -164,21 +164,21 @@ TEST_F(ConfigFileTest, TheTemplateLoadsAndOverridesDefaults) {
   EXPECT_DOUBLE_EQ(config.camera.fx, 517.3);
   EXPECT_DOUBLE_EQ(config.tracking.max_point_depth, 6.0);
   // Keys left out keep their defaults.
-  EXPECT_EQ(config.orb.fast_threshold, OrbParams().fast_threshold);
-  EXPECT_EQ(config.tracking.min_tracked_points, TrackingParams().min_tracked_points);
+  EXPECT_EQ(config.orb.fast_threshold, OrbOptions().fast_threshold);
+  EXPECT_EQ(config.tracking.min_tracked_points, TrackingOptions().min_tracked_points);
 
   const std::string edited = writeEdited("edited.yaml", "num_features: 1000", "num_features: 500");
   EXPECT_EQ(loadConfig(edited).orb.num_features, 500);
 }
 
 TEST_F(ConfigFileTest, OmittedSectionKeepsDefaults) {
-  // Sections are optional like their keys: a file without tracking: uses TrackingParams().
+  // Sections are optional like their keys: a file without tracking: uses TrackingOptions().
   std::string text = kValidYaml;
   text.erase(text.find("tracking:"));
   SystemConfig config;
   ASSERT_NO_THROW(config = loadConfig(write("no_tracking.yaml", text)))
       << "a config without a tracking section fails";
-  EXPECT_EQ(config.tracking.search_radius_px, TrackingParams().search_radius_px);
+  EXPECT_EQ(config.tracking.search_radius_px, TrackingOptions().search_radius_px);
   EXPECT_EQ(config.orb.num_features, 1000);
 }
 
@@ -351,10 +351,10 @@ TEST_F(ConfigFileTest, DenseSection) {
       loadConfig(write("dense.yaml", base + "dense:\n  stride: 4\n  colour_mode: rgb\n  "
                                             "octree_occupancy: 0.7\n  ray_margin: 0.05\n"));
   EXPECT_EQ(config.dense.stride, 4);
-  EXPECT_EQ(config.dense.colour_mode, "rgb");
+  EXPECT_EQ(config.dense.colour_mode, OctreeColourMode::kRgb);
   EXPECT_DOUBLE_EQ(config.dense.octree_occupancy, 0.7);
   EXPECT_DOUBLE_EQ(config.dense.ray_margin, 0.05);
-  EXPECT_DOUBLE_EQ(config.dense.octree_resolution, DenseParams().octree_resolution);
+  EXPECT_DOUBLE_EQ(config.dense.octree_resolution, DenseOptions().octree_resolution);
   expectConfigError(write("mode.yaml", base + "dense:\n  colour_mode: hue\n"),
                     {"dense.colour_mode", "class or rgb"});
   expectConfigError(write("occ.yaml", base + "dense:\n  octree_occupancy: 0.3\n"),
@@ -412,7 +412,7 @@ TEST_F(ConfigFileTest, LinesSurfaceBand) {
       loadConfig(write("off.yaml", base + "lines:\n  surface_band_px: 0\n")).lines.surface_band_px,
       0);
   EXPECT_EQ(loadConfig(write("none.yaml", base)).lines.surface_band_px,
-            LineParams().surface_band_px);
+            LineOptions().surface_band_px);
   expectConfigError(write("one.yaml", base + "lines:\n  surface_band_px: 1\n"),
                     {"lines.surface_band_px", "0 (off) or within [2, 20]"});
   expectConfigError(write("wide.yaml", base + "lines:\n  surface_band_px: 21\n"),
@@ -508,6 +508,125 @@ TEST(LoopCorrectionSection, OutOfRangeAndUnknownKeysNameTheKey) {
   EXPECT_EQ(loadConfigFromString(base + "loop_correction: {global_ba_iterations: 0}\n", "test")
                 .loop_correction.global_ba_iterations,
             0);
+}
+
+// String modes are parsed once, when the config is loaded: enums in the options, the same error
+// messages for a word that is not one.
+TEST_F(ConfigFileTest, ModesAreParsedIntoEnums) {
+  const std::string base = kValidYaml;
+  const SystemConfig defaults = loadConfig(write("defaults.yaml", base));
+  EXPECT_EQ(defaults.dynamic.mode, DynamicMode::kFull);
+  EXPECT_EQ(defaults.lines.balance, LineBalance::kPaper);
+  EXPECT_EQ(defaults.lines.detector, LineDetectorChoice::kAuto);
+  EXPECT_EQ(defaults.dense.colour_mode, OctreeColourMode::kClass);
+  const SystemConfig config =
+      loadConfig(write("modes.yaml", base + "dynamic:\n  mode: semantic\nlines:\n  balance: one\n  "
+                                            "detector: edlines\n"));
+  EXPECT_EQ(config.dynamic.mode, DynamicMode::kSemantic);
+  EXPECT_STREQ(toString(config.dynamic.mode), "semantic");
+  EXPECT_EQ(config.lines.balance, LineBalance::kOne);
+  EXPECT_STREQ(toString(config.lines.balance), "one");
+  EXPECT_EQ(config.lines.detector, LineDetectorChoice::kEdlines);
+  expectConfigError(write("dyn.yaml", base + "dynamic:\n  mode: fast\n"),
+                    {"dynamic.mode", "must be off, geometric, semantic or full"});
+  expectConfigError(write("bal.yaml", base + "lines:\n  balance: two\n"),
+                    {"lines.balance", "must be paper or one"});
+  expectConfigError(write("det.yaml", base + "lines:\n  detector: hough\n"),
+                    {"lines.detector", "must be auto, lsd or edlines"});
+  EXPECT_EQ(parseDynamicMode("off"), DynamicMode::kOff);
+  EXPECT_THROW(parseDynamicMode("Full"), std::invalid_argument);
+  EXPECT_EQ(modeWithoutSegmenter(DynamicMode::kFull), DynamicMode::kGeometric);
+  EXPECT_EQ(modeWithoutSegmenter(DynamicMode::kSemantic), DynamicMode::kSemantic);
+}
+
+// Ceres settings: the defaults are the values the code had written in, each solver section is
+// read over its module's defaults, and bad values are named.
+TEST_F(ConfigFileTest, SolverSections) {
+  const std::string base = kValidYaml;
+  const SystemConfig defaults = loadConfig(write("defaults.yaml", base));
+  const SolverOptions& pose = defaults.tracking.pose_solver;
+  EXPECT_EQ(pose.linear_solver, LinearSolver::kDenseQr);
+  EXPECT_EQ(pose.max_iterations, 10);
+  EXPECT_DOUBLE_EQ(pose.function_tolerance, 1e-3);
+  const SolverOptions& bundle = defaults.mapping.bundle_solver;
+  EXPECT_EQ(bundle.linear_solver, LinearSolver::kSparseSchur);
+  EXPECT_EQ(bundle.max_iterations, 10);
+  EXPECT_DOUBLE_EQ(bundle.function_tolerance, 1e-6);
+  EXPECT_EQ(defaults.loop_correction.pose_graph.linear_solver, LinearSolver::kSparseNormalCholesky);
+  EXPECT_EQ(loadConfig(write("graph.yaml",
+                             base + "loop_correction:\n  pose_graph_linear_solver: dense_qr\n"))
+                .loop_correction.pose_graph.linear_solver,
+            LinearSolver::kDenseQr);
+  expectConfigError(
+      write("graph_bad.yaml", base + "loop_correction:\n  pose_graph_linear_solver: lu\n"),
+      {"loop_correction.pose_graph_linear_solver", "must be dense_qr"});
+
+  const SystemConfig config = loadConfig(
+      write("solvers.yaml", base + "mapping:\n  bundle_solver:\n    linear_solver: dense_schur\n"
+                                   "    max_iterations: 4\n"));
+  EXPECT_EQ(config.mapping.bundle_solver.linear_solver, LinearSolver::kDenseSchur);
+  EXPECT_EQ(config.mapping.bundle_solver.max_iterations, 4);
+  EXPECT_DOUBLE_EQ(config.mapping.bundle_solver.parameter_tolerance, 1e-8);  // kept
+  const SystemConfig tracking = loadConfig(
+      writeEdited("pose.yaml", "  max_point_depth: 6.0\n",
+                  "  max_point_depth: 6.0\n  pose_solver:\n    function_tolerance: 1.0e-4\n"));
+  EXPECT_DOUBLE_EQ(tracking.tracking.pose_solver.function_tolerance, 1e-4);
+  EXPECT_EQ(tracking.tracking.pose_solver.max_iterations, 10);  // kept
+
+  expectConfigError(write("ls.yaml", base + "mapping:\n  bundle_solver:\n    linear_solver: cg\n"),
+                    {"mapping.bundle_solver.linear_solver", "must be dense_qr"});
+  expectConfigError(writeEdited("it.yaml", "  max_point_depth: 6.0\n",
+                                "  max_point_depth: 6.0\n  pose_solver:\n    max_iterations: 0\n"),
+                    {"tracking.pose_solver.max_iterations"});
+  expectConfigError(write("key.yaml", base + "mapping:\n  bundle_solver:\n    iterations: 3\n"),
+                    {"mapping.bundle_solver.iterations", "not a known key"});
+  expectConfigError(write("map.yaml", base + "mapping:\n  local_map_keyframes: 3\n"),
+                    {"mapping.local_map_keyframes", "not a known key"});
+}
+
+// The mapping side takes tracking's local-map window and outlier bound (the keys stay in
+// tracking:), and the rest of what it needs from the other sections.
+TEST_F(ConfigFileTest, MapperOptionsFollowTheirSections) {
+  const SystemConfig config =
+      loadConfig(writeEdited("mapper.yaml", "  nn_ratio: 0.9\n",
+                             "  nn_ratio: 0.9\n  local_map_keyframes: 7\n  chi2_outlier: 4.5\n"));
+  EXPECT_EQ(config.mapping.window_keyframes, 7);
+  EXPECT_DOUBLE_EQ(config.mapping.chi2_outlier, 4.5);
+  const MapperOptions mapper = mapperOptions(config);
+  EXPECT_EQ(mapper.local.window_keyframes, 7);
+  EXPECT_DOUBLE_EQ(mapper.local.chi2_outlier, 4.5);
+  EXPECT_EQ(mapper.orb.num_levels, config.orb.num_levels);
+  EXPECT_EQ(mapper.mask_dilation_px, config.dynamic.mask_dilation_px);
+  EXPECT_EQ(mapper.loop.enabled, config.loop.enabled);
+  EXPECT_EQ(mapper.loop_correction.global_ba_iterations,
+            config.loop_correction.global_ba_iterations);
+}
+
+// The tuning constants that were written into the tracker and the landmark fuser: options with
+// those values, read from their sections.
+TEST_F(ConfigFileTest, FormerConstantsAreOptions) {
+  const std::string base = kValidYaml;
+  const SystemConfig defaults = loadConfig(write("defaults.yaml", base));
+  EXPECT_EQ(defaults.tracking.pnp_min_matches, 15);
+  EXPECT_DOUBLE_EQ(defaults.tracking.max_velocity_gap_s, 0.2);
+  EXPECT_DOUBLE_EQ(defaults.mapping.fuse_radius_px, 3.0);
+  EXPECT_EQ(defaults.mapping.fuse_max_descriptor_distance, 50);
+  const SystemConfig config = loadConfig(write(
+      "fuse.yaml", base + "mapping:\n  fuse_radius_px: 2.5\n  fuse_max_descriptor_distance: 40\n"));
+  EXPECT_DOUBLE_EQ(config.mapping.fuse_radius_px, 2.5);
+  EXPECT_EQ(config.mapping.fuse_max_descriptor_distance, 40);
+  EXPECT_EQ(loadConfig(writeEdited("pnp.yaml", "  nn_ratio: 0.9\n",
+                                   "  nn_ratio: 0.9\n  pnp_min_matches: 20\n"))
+                .tracking.pnp_min_matches,
+            20);
+  expectConfigError(write("dist.yaml", base + "mapping:\n  fuse_max_descriptor_distance: 300\n"),
+                    {"mapping.fuse_max_descriptor_distance"});
+  expectConfigError(
+      writeEdited("pnp_bad.yaml", "  nn_ratio: 0.9\n", "  nn_ratio: 0.9\n  pnp_min_matches: 3\n"),
+      {"tracking.pnp_min_matches", "must be >= 4"});
+  expectConfigError(
+      writeEdited("gap.yaml", "  nn_ratio: 0.9\n", "  nn_ratio: 0.9\n  max_velocity_gap_s: 0\n"),
+      {"tracking.max_velocity_gap_s", "must be > 0"});
 }
 
 // Found by fuzz/fuzz_config: a list or map as a key ("? " form) threw yaml-cpp's

@@ -28,7 +28,7 @@ using test::kWallDepth;
 using test::wallPacket;
 
 // Stride 1 and a voxel far smaller than the pixel footprint: one point per used pixel.
-DenseParams everyPixel() { return test::denseTestParams(1, 0.001); }
+DenseOptions everyPixel() { return test::denseTestParams(1, 0.001); }
 
 bool onWalker(const pcl::PointXYZRGBL& p) { return std::abs(p.z - kWalkerDepth) < 1e-4; }
 
@@ -80,7 +80,7 @@ TEST(KeyFrameCloudBuilder, LeavesOutDynamicPixelsInvalidDepthAndOutOfRange) {
 }
 
 TEST(KeyFrameCloudBuilder, DilationWidensTheLeftOutRegion) {
-  DenseParams params = everyPixel();
+  DenseOptions params = everyPixel();
   params.dilation_px = 2;
   const KeyFrameCloudBuilder builder(params, ClassPalette());
   const auto packet = wallPacket(1, Eigen::Vector3d::Zero(), true, true);
@@ -90,7 +90,7 @@ TEST(KeyFrameCloudBuilder, DilationWidensTheLeftOutRegion) {
 }
 
 TEST(KeyFrameCloudBuilder, StrideSamplesEveryNthPixel) {
-  DenseParams params = everyPixel();
+  DenseOptions params = everyPixel();
   params.stride = 4;
   const KeyFrameCloudBuilder builder(params, ClassPalette());
   const auto packet = wallPacket(1, Eigen::Vector3d::Zero(), false, false);
@@ -115,7 +115,7 @@ TEST(KeyFrameCloudBuilder, UndistortsRawPixels) {
 }
 
 TEST(KeyFrameCloudBuilder, TagsFollowTheTagMaskThroughTheVoxelFilter) {
-  DenseParams params = everyPixel();
+  DenseOptions params = everyPixel();
   params.voxel_size = 0.05;
   const KeyFrameCloudBuilder builder(params, ClassPalette());
   const auto packet = wallPacket(1, Eigen::Vector3d::Zero(), true, false);

@@ -28,7 +28,7 @@ using test::kWalkerPixels;
 using test::kWallDepth;
 using test::wallPacket;
 
-DenseParams testParams() { return test::denseTestParams(1, 0.01); }
+DenseOptions testParams() { return test::denseTestParams(1, 0.01); }
 
 struct Scene {
   KeyFrameCloudBuilder builder{testParams(), ClassPalette()};
@@ -240,7 +240,7 @@ TEST(SemanticOctree, AMapFileThatCannotBeWrittenIsNamedAndTheOthersWritten) {
 }
 
 TEST(DenseMappingWorker, DrainsTheQueueAndSkipsBadPackets) {
-  DenseParams params = testParams();
+  DenseOptions params = testParams();
   params.stride = 2;
   DenseMappingWorker worker(params);
   worker.push(wallPacket(1, {0, 0, 0}, true, true));

@@ -134,7 +134,7 @@ TEST(DynamicFeatureFilter, LabelRulesFollowTheThresholds) {
   ASSERT_GT(degree, 0.3);
   ASSERT_LT(degree, 0.7);
   auto judged = [&](ClassMotion kind, double active, double passive) {
-    DynamicFilterParams p;
+    DynamicFilterOptions p;
     p.active_degree = active;
     p.passive_degree = passive;
     return DynamicFeatureFilter(noisyCamera(), p)

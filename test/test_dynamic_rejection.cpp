@@ -28,7 +28,7 @@ Outcome runOffice(int walkers, const std::string& mode, bool labels, bool lines 
   const SyntheticSequence sequence(o);
   SystemConfig config;
   config.camera = sequence.sensorCamera();
-  config.dynamic.mode = mode;
+  config.dynamic.mode = parseDynamicMode(mode);
   config.lines.enabled = lines;
   System system(config);
   Outcome outcome;

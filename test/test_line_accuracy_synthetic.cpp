@@ -35,7 +35,7 @@ Share measure(SceneKind scene, LineFitMethod method, int surface_band_px, bool n
   o.noise = noise;
   const SyntheticSequence sequence(o);
   const PinholeCamera camera = sequence.sensorCamera();
-  LineParams params;
+  LineOptions params;
   params.surface_band_px = surface_band_px;
   const LineExtractor extractor(params);
   const LineFitter fitter(params, camera);
@@ -65,7 +65,7 @@ Share measure(SceneKind scene, LineFitMethod method, int surface_band_px, bool n
 class LineAccuracy : public testing::TestWithParam<SceneKind> {};
 
 TEST_P(LineAccuracy, AcceptedLinesLieOnTheTrueSegments) {
-  const int band = LineParams().surface_band_px;
+  const int band = LineOptions().surface_band_px;
   const Share refined = measure(GetParam(), LineFitMethod::kSampled, band);
   const Share paper = measure(GetParam(), LineFitMethod::kSampled, 0);
   const Share endpoints = measure(GetParam(), LineFitMethod::kEndpoints, band);

@@ -82,9 +82,9 @@ struct Errors {
 };
 Errors compare(const PinholeCamera& c, const SceneDepth& scene, const LineFeature& line,
                const Eigen::Vector3d& A, const Eigen::Vector3d& B, int trials) {
-  LineParams paper_params;
+  LineOptions paper_params;
   paper_params.surface_band_px = 0;
-  const LineFitter paper(paper_params, c), refined(LineParams{}, c);
+  const LineFitter paper(paper_params, c), refined(LineOptions{}, c);
   Errors e;
   for (int k = 0; k < trials; ++k) {
     const cv::Mat depth = render(c, scene, 100 + k);
@@ -184,12 +184,12 @@ TEST(LineDepthRefiner, LeavesTheLineWithoutASurfaceBeside) {
   fit.start = c.backProject(line.start, 2.0);
   fit.end = c.backProject(line.end, 2.0);
   const Line3D before = fit;
-  const LineDepthRefiner refiner(LineParams{}, c);
+  const LineDepthRefiner refiner(LineOptions{}, c);
   EXPECT_FALSE(refiner.refine(line, depth, fit));
   EXPECT_EQ(fit.start, before.start);
   EXPECT_EQ(fit.end, before.end);
   // Off: nothing changes either, with surfaces around.
-  LineParams off;
+  LineOptions off;
   off.surface_band_px = 0;
   depth = render(
       c, [](const Eigen::Vector2d&) { return 2.0; }, 6);

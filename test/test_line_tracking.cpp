@@ -231,7 +231,8 @@ TEST(LineTracking, DisabledIsExactlyPointsOnly) {
   config.lines.enabled = false;
   const RunResult a = runSequence(sequence, config);
   SystemConfig other = config;  // every line setting different
-  other.lines.balance = config.lines.balance == "one" ? "paper" : "one";
+  other.lines.balance =
+      config.lines.balance == LineBalance::kOne ? LineBalance::kPaper : LineBalance::kOne;
   other.lines.max_lines = 3;
   other.lines.max_descriptor_distance = 200;
   other.lines.match_distance_px = 100.0;
@@ -278,7 +279,7 @@ TEST(LineTracking, SegmentsShorterThanAPixelAreNotMatched) {
   };
   const auto lineInliers = [&](bool shorten) {
     Map map;
-    Tracker tracker(config, map, orb.scales());
+    Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map, orb.scales());
     for (size_t i = 0; i < 4; ++i) {
       Frame f = frame(i);
       EXPECT_EQ(tracker.track(f).state, TrackingState::kOk) << "frame " << i;

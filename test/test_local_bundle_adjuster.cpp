@@ -67,7 +67,7 @@ TEST_F(SmallMap, MovedKeyFrameReturnsToItsPose) {
   const Eigen::Isometry3d truth = keyframes_[3]->T_cw;
   keyframes_[3]->T_cw = makePose({1, 0, 0}, 0.5, {0.01, -0.01, 0.02}) * truth;
   const LocalBundleAdjustmentStats stats =
-      LocalBundleAdjuster(config_).adjust(map_, *keyframes_[3]);
+      LocalBundleAdjuster(config_.camera, config_.mapping).adjust(map_, *keyframes_[3]);
   EXPECT_EQ(stats.keyframes, 3);  // keyframe 0 holds the gauge
   EXPECT_EQ(stats.points, 60);
   EXPECT_EQ(stats.outliers_removed, 0);
@@ -80,7 +80,7 @@ TEST_F(SmallMap, AnObservationFarOffIsRemoved) {
   // Keypoint 5 of keyframe 2 moved 40 px: an outlier after adjustment, unlinked from its point.
   keyframes_[2]->features.undistorted[5] += Eigen::Vector2d(40.0, 0.0);
   const LocalBundleAdjustmentStats stats =
-      LocalBundleAdjuster(config_).adjust(map_, *keyframes_[3]);
+      LocalBundleAdjuster(config_.camera, config_.mapping).adjust(map_, *keyframes_[3]);
   EXPECT_EQ(stats.outliers_removed, 1);
   EXPECT_EQ(keyframes_[2]->map_points[5], nullptr);
   // Huber bounds its pull during the solve that finds it (8.9 mm here).
@@ -91,7 +91,7 @@ TEST_F(SmallMap, AnObservationFarOffIsRemoved) {
 // between must survive the write-back.
 TEST_F(SmallMap, WhatChangedDuringTheSolveIsRespected) {
   keyframes_[2]->features.undistorted[5] += Eigen::Vector2d(40.0, 0.0);  // an outlier, as above
-  const LocalBundleAdjuster adjuster(config_);
+  const LocalBundleAdjuster adjuster(config_.camera, config_.mapping);
   BundleWindow window = adjuster.gatherLocal(*keyframes_[3]);
   adjuster.solve(window);
   // Meanwhile keypoint 5 of keyframe 2 was linked to another landmark, and point 7 was merged
@@ -114,7 +114,7 @@ TEST_F(SmallMap, GatheringCopiesAndSolvingLeavesTheMapAlone) {
   const Eigen::Isometry3d truth = keyframes_[3]->T_cw;
   keyframes_[3]->T_cw = makePose({1, 0, 0}, 0.5, {0.01, -0.01, 0.02}) * truth;
   const Eigen::Isometry3d moved = keyframes_[3]->T_cw;
-  const LocalBundleAdjuster adjuster(config_);
+  const LocalBundleAdjuster adjuster(config_.camera, config_.mapping);
   BundleWindow window = adjuster.gatherLocal(*keyframes_[3]);
   adjuster.solve(window);
   EXPECT_EQ(keyframes_[3]->T_cw.matrix(), moved.matrix());  // not written yet
@@ -123,7 +123,7 @@ TEST_F(SmallMap, GatheringCopiesAndSolvingLeavesTheMapAlone) {
 }
 
 TEST_F(SmallMap, ASolveAskedToStopReportsIt) {
-  const LocalBundleAdjuster adjuster(config_);
+  const LocalBundleAdjuster adjuster(config_.camera, config_.mapping);
   BundleWindow window = adjuster.gatherAll(map_, 10);
   std::atomic<bool> abandon{true};
   EXPECT_FALSE(adjuster.solve(window, &abandon));
@@ -136,7 +136,7 @@ TEST_F(SmallMap, ASolveAskedToStopReportsIt) {
 TEST_F(SmallMap, GlobalAdjustmentCarriesAlongWhatWasMadeMeanwhile) {
   const Eigen::Isometry3d truth = keyframes_[3]->T_cw;
   keyframes_[3]->T_cw = makePose({1, 0, 0}, 0.5, {0.01, -0.01, 0.02}) * truth;
-  const LocalBundleAdjuster adjuster(config_);
+  const LocalBundleAdjuster adjuster(config_.camera, config_.mapping);
   GlobalBundleAdjustment global(adjuster);
   global.start(adjuster.gatherAll(map_, 10));
   global.wait();

@@ -90,7 +90,7 @@ TEST(LoopCorrector, ClosingTheSquareTakesOutItsDrift) {
 
   SystemConfig config;
   config.camera = test::makeCamera();
-  const LandmarkFuser fuser(config);
+  const LandmarkFuser fuser(config.camera, config.orb, config.mapping);
   LoopCorrector corrector(LoopCorrectionOptions(), fuser, map);
   const LoopCorrection correction = corrector.correct(query, candidate, T_query_candidate);
   const double error_after = maxPositionError(map, truth);

@@ -225,7 +225,7 @@ TEST(DefaultVocabularies, LoadAndTellImagesApart) {
   const cv::Mat b = cv::imread(data + "box_in_scene.png", cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(a.empty() || b.empty()) << "opencv-doc example images missing in " << data;
   const cv::Mat shifted = a(cv::Rect(20, 15, a.cols - 40, a.rows - 30)).clone();
-  const OrbExtractor extractor{OrbParams{}};
+  const OrbExtractor extractor{OrbOptions{}};
   const auto words = [&](const cv::Mat& gray) {
     std::vector<cv::KeyPoint> keypoints;
     cv::Mat descriptors;
@@ -249,7 +249,7 @@ TEST(LoopKeyFrameBuilder, LeavesOutMoversAndBoxesEveryInstance) {
   packet.keypoint_depth = {1.0f, 2.0f, 3.0f, 4.0f};
   packet.descriptors = cv::Mat::zeros(4, 32, CV_8U);
   for (int r = 0; r < 4; ++r) packet.descriptors.at<uint8_t>(r, 0) = static_cast<uint8_t>(r);
-  const LoopKeyFrameBuilder builder(LineParams(), PinholeCamera(), LoopOptions(), 2);
+  const LoopKeyFrameBuilder builder(LineOptions(), PinholeCamera(), LoopOptions(), 2);
   const LoopKeyFrame kf = builder.build(packet);
   EXPECT_EQ(kf.id, 7);
   ASSERT_EQ(kf.keypoints.size(), 2u);
@@ -268,7 +268,7 @@ TEST(LoopKeyFrameBuilder, LeavesOutMoversAndBoxesEveryInstance) {
   EXPECT_TRUE(plain.instances.empty());
 }
 
-// Lines describe the place even when tracking runs without them (LineParams::enabled false, the
+// Lines describe the place even when tracking runs without them (LineOptions::enabled false, the
 // shipped default), except those on a person.
 TEST(LoopKeyFrameBuilder, DescribesLinesWhateverTrackingDoesAndNotOnMovers) {
   KeyFramePacket packet;
@@ -276,7 +276,7 @@ TEST(LoopKeyFrameBuilder, DescribesLinesWhateverTrackingDoesAndNotOnMovers) {
   for (int k = 0; k < 4; ++k)  // four bright bars: eight long edges
     cv::rectangle(packet.rgb, cv::Rect(60 + 140 * k, 60, 40, 360), cv::Scalar(220, 220, 220),
                   cv::FILLED);
-  LineParams lines;
+  LineOptions lines;
   lines.enabled = false;
   const LoopKeyFrameBuilder builder(lines, testCamera(), LoopOptions(), 0);
   const int all = builder.build(packet).lbd_descriptors.rows;

@@ -35,7 +35,7 @@ TEST_P(MapLineAccuracy, FusedMapLinesLieOnTheTrueSegments) {
   SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
   config.camera = sequence.sensorCamera();
   config.lines.enabled = true;
-  config.dynamic.mode = "off";
+  config.dynamic.mode = DynamicMode::kOff;
   System system(config);
   for (int i = 0; i < sequence.size(); ++i) {
     const RenderedFrame frame = sequence.render(i);

@@ -49,9 +49,9 @@ struct OfficeMap {
   explicit OfficeMap(int walkers)
       : sequence(officeOptions(walkers)),
         T_world_scene(sequence.pose(0).inverse()),
-        octree(DenseParams().octree_resolution, SemanticOctree::ColourMode::kClass, ClassPalette(),
-               DenseParams().octree_occupancy, DenseParams().ray_margin) {
-    const DenseParams dense;
+        octree(DenseOptions().octree_resolution, SemanticOctree::ColourMode::kClass, ClassPalette(),
+               DenseOptions().octree_occupancy, DenseOptions().ray_margin) {
+    const DenseOptions dense;
     KeyFrameCloudBuilder builder(dense, palette);
     for (int i = 0; i < kFrames; i += kKeyFrameEvery) {
       const RenderedFrame f = sequence.render(i);
@@ -73,7 +73,7 @@ struct OfficeMap {
   // The exact scene points (the renderer's surface maps) of the pixels the dense map takes:
   // static, sampled every `stride` pixels, with a depth reading in range.
   std::vector<Eigen::Vector3d> staticPoints(const RenderedFrame& f,
-                                            const DenseParams& dense) const {
+                                            const DenseOptions& dense) const {
     const std::vector<Quad>& quads = sequence.scene().staticQuads();
     std::vector<Eigen::Vector3d> points;
     for (int v = 0; v < f.depth.rows; v += dense.stride)

@@ -61,7 +61,7 @@ struct Extracted {
   cv::Mat descriptors;
 };
 
-Extracted extract(const cv::Mat& gray, const OrbParams& params = OrbParams()) {
+Extracted extract(const cv::Mat& gray, const OrbOptions& params = OrbOptions()) {
   Extracted out;
   OrbExtractor(params).extract(gray, out.keypoints, out.descriptors);
   return out;
@@ -97,7 +97,7 @@ std::vector<cv::KeyPoint> level(const std::vector<cv::KeyPoint>& keypoints, int 
 
 // The budget, the descriptor layout and the pyramid, on one image.
 void checkBudgetAndLevels(const cv::Mat& gray) {
-  const OrbParams params;
+  const OrbOptions params;
   const Extracted e = extract(gray, params);
   const int n = static_cast<int>(e.keypoints.size());
   EXPECT_GE(n, 950);
@@ -147,7 +147,7 @@ TEST(OrbExtractor, BudgetDescriptorsAndLevelsOnTumFrame) {
 // A cell is textured when FAST finds corners in it at the extractor's first threshold.
 bool textured(const cv::Mat& gray, const cv::Rect& cell) {
   std::vector<cv::KeyPoint> corners;
-  cv::FAST(gray(cell), corners, OrbParams().fast_threshold, true);
+  cv::FAST(gray(cell), corners, OrbOptions().fast_threshold, true);
   return corners.size() >= 10;
 }
 

@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include "ply_slam/common/ceres_solver_options.h"
+#include "ply_slam/common/chi_square.h"
 #include "ply_slam/common/point_residual.h"
 #include "ply_slam/tracking/pose_optimizer.h"
 #include "pose_test_helpers.h"
@@ -261,6 +263,46 @@ TEST(PoseOptimizer, LandmarkNearerThanTheMinimumDepthIsNoInlier) {
   std::vector<bool> inlier;
   EXPECT_EQ(optimizer.optimize(scene.observations, solved, inlier), 50);
   EXPECT_FALSE(inlier.back());
+}
+
+// The chi-square table: the depth residual's degree of freedom takes the 2-DoF bound to the
+// 3-DoF one.
+TEST(ChiSquare, DepthDegreeOfFreedomJoinsTheTwoBounds) {
+  EXPECT_NEAR(withDepthDof(kChiSquare95TwoDof), kChiSquare95ThreeDof, 1e-12);
+  EXPECT_DOUBLE_EQ(PoseOptimizerParams().chi2_pixel, kChiSquare95TwoDof);
+  EXPECT_DOUBLE_EQ(PoseOptimizerParams().chi2_depth, kChiSquare95ThreeDof);
+}
+
+// What SolverOptions does not set must be Ceres' own default, so that moving the settings into
+// options changed no solve; and every setting reaches Ceres.
+TEST(SolverOptions, DefaultsAreCeresDefaultsAndEverySettingReachesCeres) {
+  const ceres::Solver::Options ceres_defaults;
+  const SolverOptions defaults;
+  EXPECT_EQ(defaults.max_iterations, ceres_defaults.max_num_iterations);
+  EXPECT_EQ(defaults.function_tolerance, ceres_defaults.function_tolerance);
+  EXPECT_EQ(defaults.gradient_tolerance, ceres_defaults.gradient_tolerance);
+  EXPECT_EQ(defaults.parameter_tolerance, ceres_defaults.parameter_tolerance);
+
+  SolverOptions o;
+  o.linear_solver = LinearSolver::kSparseNormalCholesky;
+  o.max_iterations = 7;
+  o.function_tolerance = 1e-2;
+  o.gradient_tolerance = 1e-3;
+  o.parameter_tolerance = 1e-4;
+  o.num_threads = 2;
+  const ceres::Solver::Options c = toCeres(o);
+  EXPECT_EQ(c.linear_solver_type, ceres::SPARSE_NORMAL_CHOLESKY);
+  EXPECT_EQ(c.max_num_iterations, 7);
+  EXPECT_EQ(c.function_tolerance, 1e-2);
+  EXPECT_EQ(c.gradient_tolerance, 1e-3);
+  EXPECT_EQ(c.parameter_tolerance, 1e-4);
+  EXPECT_EQ(c.num_threads, 2);
+  EXPECT_EQ(c.logging_type, ceres::SILENT);
+  EXPECT_EQ(toCeres(poseSolverDefaults()).linear_solver_type, ceres::DENSE_QR);
+  o.linear_solver = LinearSolver::kSparseSchur;
+  EXPECT_EQ(toCeres(o).linear_solver_type, ceres::SPARSE_SCHUR);
+  o.linear_solver = LinearSolver::kDenseSchur;
+  EXPECT_EQ(toCeres(o).linear_solver_type, ceres::DENSE_SCHUR);
 }
 
 }  // namespace

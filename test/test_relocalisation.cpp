@@ -77,7 +77,8 @@ TEST(Relocalisation, TriesOnlyTheDatabasesCandidates) {
   const TumSequence sequence(folder);
   Map map;
   OrbExtractor extractor(config.orb);
-  Tracker tracker(config, map, extractor.scales());
+  Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map,
+                  extractor.scales());
   long offered = 0;
   tracker.setPlaceCandidates([&](const Frame&) {
     ++offered;

@@ -30,7 +30,7 @@ void expectWalkersFound(const std::string& model, int width, int height) {
   const std::string model_path = test::sharedPath("models/" + model);
   PLY_SLAM_REQUIRE_SHARED(folder);
   PLY_SLAM_REQUIRE_SHARED(model_path);
-  YoloParams params;
+  YoloOptions params;
   params.model_path = model_path;
   params.class_names_path = test::sharedPath("models/coco.names");
   params.input_width = width;
@@ -68,7 +68,7 @@ TEST(YoloV8Seg, Model480x640) { expectWalkersFound("yolov8n-seg-480x640.onnx", 6
 TEST(YoloV8Seg, Model320x320) { expectWalkersFound("yolov8n-seg-320x320.onnx", 320, 320); }
 
 TEST(YoloV8Seg, MissingModelIsNamed) {
-  YoloParams params;
+  YoloOptions params;
   params.model_path = "/nonexistent/model.onnx";
   try {
     YoloV8Seg yolo(params);
@@ -81,7 +81,7 @@ TEST(YoloV8Seg, MissingModelIsNamed) {
 TEST(YoloV8Seg, WrongInputSizeIsExplained) {
   const std::string model_path = test::sharedPath("models/yolov8n-seg-320x320.onnx");
   PLY_SLAM_REQUIRE_SHARED(model_path);
-  YoloParams params;
+  YoloOptions params;
   params.model_path = model_path;
   params.class_names_path = test::sharedPath("models/coco.names");
   params.input_width = params.input_height = 640;  // the export is 320 x 320
@@ -105,7 +105,7 @@ TEST(YoloV8Seg, TransposedInputSizeIsRefusedAtLoad) {
   EXPECT_EQ(readOnnxInputShape(model_path), (std::vector<std::int64_t>{1, 3, 480, 640}));
   EXPECT_EQ(readOnnxInputShape(test::sharedPath("models/yolov8n-seg-320x320.onnx")),
             (std::vector<std::int64_t>{1, 3, 320, 320}));
-  YoloParams params;
+  YoloOptions params;
   params.model_path = model_path;
   params.class_names_path = test::sharedPath("models/coco.names");
   params.input_width = 480;

@@ -6,14 +6,14 @@
 
 namespace ply_slam {
 
-DenseMappingWorker::DenseMappingWorker(const DenseParams& params)
+DenseMappingWorker::DenseMappingWorker(const DenseOptions& params)
     : DenseMappingWorker(params, ClassPalette::configured(params.palette)) {}
 
-DenseMappingWorker::DenseMappingWorker(const DenseParams& params, const ClassPalette& palette)
+DenseMappingWorker::DenseMappingWorker(const DenseOptions& params, const ClassPalette& palette)
     : builder_(params, palette),
       map_(params.voxel_size),
-      octree_(params.octree_resolution, SemanticOctree::parseColourMode(params.colour_mode),
-              palette, params.octree_occupancy, params.ray_margin) {
+      octree_(params.octree_resolution, params.colour_mode, palette, params.octree_occupancy,
+              params.ray_margin) {
   if (params.octree_filter) map_.keepOnlyOccupied(&octree_);
   thread_ = std::thread([this] { run(); });
 }

@@ -29,7 +29,7 @@ bool sameIntrinsics(const PinholeCamera& a, const PinholeCamera& b) {
 
 }  // namespace
 
-KeyFrameCloudBuilder::KeyFrameCloudBuilder(const DenseParams& params, ClassPalette palette)
+KeyFrameCloudBuilder::KeyFrameCloudBuilder(const DenseOptions& params, ClassPalette palette)
     : params_(params), palette_(std::move(palette)) {
   if (params_.stride < 1) throw std::invalid_argument("dense: stride must be >= 1");
   if (!(params_.min_depth > 0.0) || !(params_.max_depth > params_.min_depth))

@@ -60,12 +60,6 @@ SemanticOctree::SemanticOctree(double resolution, ColourMode mode, ClassPalette 
 
 SemanticOctree::~SemanticOctree() = default;
 
-SemanticOctree::ColourMode SemanticOctree::parseColourMode(const std::string& text) {
-  if (text == "class") return ColourMode::kClass;
-  if (text == "rgb") return ColourMode::kRgb;
-  throw std::invalid_argument("octree colour mode '" + text + "' (class or rgb)");
-}
-
 void SemanticOctree::insert(const KeyFrameCloud& cloud) {
   if (!cloud.points) throw std::invalid_argument("SemanticOctree::insert: cloud has no points");
   if (cloud.tags && cloud.tags->size() != cloud.points->size())

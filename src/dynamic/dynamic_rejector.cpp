@@ -24,21 +24,9 @@ bool onMask(const cv::Mat& mask, double u, double v) {
 
 }  // namespace
 
-DynamicMode parseDynamicMode(const std::string& mode) {
-  if (mode == "off") return DynamicMode::kOff;
-  if (mode == "geometric") return DynamicMode::kGeometric;
-  if (mode == "semantic") return DynamicMode::kSemantic;
-  if (mode == "full") return DynamicMode::kFull;
-  throw std::invalid_argument("dynamic mode '" + mode + "' (off, geometric, semantic or full)");
-}
-
-std::string modeWithoutSegmenter(const std::string& mode) {
-  return mode == "full" ? "geometric" : mode;
-}
-
-DynamicRejector::DynamicRejector(const DynamicParams& params, const PinholeCamera& camera)
+DynamicRejector::DynamicRejector(const DynamicOptions& params, const PinholeCamera& camera)
     : params_(params),
-      mode_(parseDynamicMode(params.mode)),
+      mode_(params.mode),
       camera_(camera),
       filter_(camera, params.filter),
       active_(params.active_classes.begin(), params.active_classes.end()),

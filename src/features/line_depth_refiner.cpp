@@ -55,7 +55,7 @@ double residual(const BandSample& b, const Eigen::Vector3d& theta) {
 
 }  // namespace
 
-LineDepthRefiner::LineDepthRefiner(const LineParams& params, const PinholeCamera& camera)
+LineDepthRefiner::LineDepthRefiner(const LineOptions& params, const PinholeCamera& camera)
     : params_(params), camera_(camera), depth_(camera) {}
 
 LineDepthRefiner::SideFit LineDepthRefiner::fitSide(const Band& band, const cv::Mat& depth_m,

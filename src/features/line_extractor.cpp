@@ -53,19 +53,20 @@ bool LineExtractor::lsdAvailable() {
   return available;
 }
 
-LineExtractor::LineExtractor(const LineParams& params) : params_(params), merger_(params) {
-  if (params_.detector == "edlines") {
-    detector_name_ = "edlines";
-  } else if (params_.detector == "lsd") {
-    if (!lsdAvailable())
-      throw std::runtime_error("lines.detector: lsd is not available in OpenCV " CV_VERSION
-                               " (removed in 4.1.0-4.5.3); use auto or edlines");
-    detector_name_ = "lsd";
-  } else if (params_.detector == "auto") {
-    detector_name_ = lsdAvailable() ? "lsd" : "edlines";
-  } else {
-    throw std::invalid_argument("lines.detector must be auto, lsd or edlines, not '" +
-                                params_.detector + "'");
+LineExtractor::LineExtractor(const LineOptions& params) : params_(params), merger_(params) {
+  switch (params_.detector) {
+    case LineDetectorChoice::kEdlines:
+      detector_name_ = "edlines";
+      break;
+    case LineDetectorChoice::kLsd:
+      if (!lsdAvailable())
+        throw std::runtime_error("lines.detector: lsd is not available in OpenCV " CV_VERSION
+                                 " (removed in 4.1.0-4.5.3); use auto or edlines");
+      detector_name_ = "lsd";
+      break;
+    case LineDetectorChoice::kAuto:
+      detector_name_ = lsdAvailable() ? "lsd" : "edlines";
+      break;
   }
 }
 

@@ -8,7 +8,7 @@
 
 namespace ply_slam {
 
-LineFitter::LineFitter(const LineParams& params, const PinholeCamera& camera)
+LineFitter::LineFitter(const LineOptions& params, const PinholeCamera& camera)
     : params_(params), camera_(camera), depth_(camera), refiner_(params, camera) {}
 
 constexpr double kSidePx = 2.0;  // where the two sides of a line are read

@@ -38,7 +38,7 @@ struct LineMatcher::Observed {
       : l(f.line()), d(f.direction()), start(f.start), end(f.end), length(f.length()) {}
 };
 
-LineMatcher::LineMatcher(const LineParams& params, const PinholeCamera& camera)
+LineMatcher::LineMatcher(const LineOptions& params, const PinholeCamera& camera)
     : params_(params),
       camera_(camera),
       cos_max_angle_(std::cos(params.match_angle_deg * kPi / 180.0)) {}

@@ -41,7 +41,7 @@ LineFeature join(const LineFeature& a, const LineFeature& b) {
 
 }  // namespace
 
-LineMerger::LineMerger(const LineParams& params)
+LineMerger::LineMerger(const LineOptions& params)
     : max_angle_rad_(params.merge_angle_deg * kPi / 180.0),
       max_distance_px_(params.merge_distance_px),
       max_gap_px_(params.merge_gap_px) {}

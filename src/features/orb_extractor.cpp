@@ -29,7 +29,7 @@ float intensityCentroidAngle(const cv::Mat& image, const cv::Point2f& pt) {
 
 }  // namespace
 
-OrbExtractor::OrbExtractor(const OrbParams& params) : params_(params) {
+OrbExtractor::OrbExtractor(const OrbOptions& params) : params_(params) {
   scales_.resize(params_.num_levels);
   for (int i = 0; i < params_.num_levels; ++i) scales_[i] = std::pow(params_.scale_factor, i);
 

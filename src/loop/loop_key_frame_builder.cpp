@@ -24,7 +24,7 @@ cv::Mat keptRows(const cv::Mat& rows, const std::vector<bool>& keep) {
 
 }  // namespace
 
-LoopKeyFrameBuilder::LoopKeyFrameBuilder(const LineParams& lines, const PinholeCamera& camera,
+LoopKeyFrameBuilder::LoopKeyFrameBuilder(const LineOptions& lines, const PinholeCamera& camera,
                                          const LoopOptions& loop, int mask_dilation_px)
     : lines_(lines),
       camera_(camera),

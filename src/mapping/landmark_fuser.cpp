@@ -4,13 +4,11 @@
 #include <limits>
 #include <unordered_set>
 
+#include "ply_slam/common/chi_square.h"
 #include "ply_slam/tracking/projection_matcher.h"
 
 namespace ply_slam {
 namespace {
-
-constexpr double kRadiusPx = 3.0;  // search radius at level 0 around the projection
-constexpr int kMaxDistance = 50;   // Hamming: stricter than tracking, a merge is permanent
 
 bool observedBy(const MapPoint& p, const KeyFrame* kf) {
   for (const auto& o : p.observers)
@@ -20,8 +18,14 @@ bool observedBy(const MapPoint& p, const KeyFrame* kf) {
 
 }  // namespace
 
-LandmarkFuser::LandmarkFuser(const SystemConfig& config)
-    : config_(config), log_scale_(std::log(config.orb.scale_factor)) {}
+LandmarkFuser::LandmarkFuser(const PinholeCamera& camera, const OrbOptions& orb,
+                             const LocalMappingOptions& options)
+    : camera_(camera),
+      num_levels_(orb.num_levels),
+      log_scale_(std::log(orb.scale_factor)),
+      chi2_outlier_(options.chi2_outlier),
+      radius_px_(options.fuse_radius_px),
+      max_distance_(options.fuse_max_descriptor_distance) {}
 
 int LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
                         const std::vector<KeyFrame*>& neighbours) const {
@@ -44,10 +48,10 @@ int LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
 
 int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
                             const std::vector<std::shared_ptr<MapPoint>>& points) const {
-  const auto& cam = config_.camera;
+  const auto& cam = camera_;
   const auto& f = target.features;
   const Eigen::Vector3d centre = target.T_wc().translation();
-  const int num_levels = config_.orb.num_levels;
+  const int num_levels = num_levels_;
   int changes = 0;
   for (const auto& p : points) {
     if (p->bad || observedBy(*p, &target)) continue;
@@ -64,15 +68,15 @@ int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
     int best = std::numeric_limits<int>::max();
     long best_index = -1;
     for (size_t i :
-         f.featuresInArea(uv.x(), uv.y(), kRadiusPx * (*f.scales)[level], level - 1, level)) {
+         f.featuresInArea(uv.x(), uv.y(), radius_px_ * (*f.scales)[level], level - 1, level)) {
       // Geometric agreement first: reprojection (and depth where measured) within 95 %.
       const double sigma = f.scale(i);
       double e2 = (f.undistorted[i] - uv).squaredNorm() / (sigma * sigma);
-      double chi2 = config_.tracking.chi2_outlier;
+      double chi2 = chi2_outlier_;
       if (f.hasDepth(i)) {
         const double dz = f.depth[i] - pc.z();
         e2 += dz * dz / cam.depth_noise.variance(f.depth[i]);
-        chi2 += 1.824;
+        chi2 = withDepthDof(chi2);
       }
       if (e2 > chi2) continue;
       const int d = descriptorDistance(p->descriptor, f.descriptors.row(static_cast<int>(i)));
@@ -81,7 +85,7 @@ int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
         best_index = static_cast<long>(i);
       }
     }
-    if (best_index < 0 || best > kMaxDistance) continue;
+    if (best_index < 0 || best > max_distance_) continue;
 
     const auto existing = target.map_points[best_index];
     if (!existing || existing->bad) {

@@ -6,6 +6,9 @@
 #include <optional>
 #include <unordered_map>
 
+#include "ply_slam/common/ceres_solver_options.h"
+#include "ply_slam/common/chi_square.h"
+
 namespace ply_slam {
 namespace {
 
@@ -19,8 +22,6 @@ struct ObservationCost {
   const PointResidual residual;
   const PinholeCamera& cam;
 };
-
-constexpr int kLocalIterations = 10;  // after each keyframe: the window is small and warm
 
 // Stops the solver after the iteration during which `abandon` turned true.
 class AbandonCallback : public ceres::IterationCallback {
@@ -44,9 +45,8 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
 
 BundleWindow LocalBundleAdjuster::gatherLocal(KeyFrame& keyframe) const {
   std::vector<KeyFrame*> keyframes{&keyframe};
-  for (KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
-    keyframes.push_back(kf);
-  return gather(keyframes, kLocalIterations);
+  for (KeyFrame* kf : keyframe.bestCovisible(options_.window_keyframes)) keyframes.push_back(kf);
+  return gather(keyframes, options_.bundle_solver.max_iterations);
 }
 
 BundleWindow LocalBundleAdjuster::gatherAll(const Map& map, int max_iterations) const {
@@ -93,8 +93,7 @@ BundleWindow LocalBundleAdjuster::gather(const std::vector<KeyFrame*>& keyframes
       o.residual.pixel_sigma = f.scale(i);
       if (f.hasDepth(i)) {
         o.residual.depth = f.depth[i];
-        o.residual.depth_sigma =
-            std::sqrt(config_.camera.depth_noise.varianceAgainstMap(f.depth[i]));
+        o.residual.depth_sigma = std::sqrt(camera_.depth_noise.varianceAgainstMap(f.depth[i]));
       }
       o.behind = !PointResidual::inFront(kf->T_cw * point.position);
       window.observations.push_back(o);
@@ -104,8 +103,8 @@ BundleWindow LocalBundleAdjuster::gather(const std::vector<KeyFrame*>& keyframes
 }
 
 double LocalBundleAdjuster::chi2Bound(const PointResidual& residual) const {
-  const double chi2 = config_.tracking.chi2_outlier;
-  return residual.hasDepth() ? chi2 + 1.824 : chi2;
+  const double chi2 = options_.chi2_outlier;
+  return residual.hasDepth() ? withDepthDof(chi2) : chi2;
 }
 
 bool LocalBundleAdjuster::solve(BundleWindow& window, const std::atomic<bool>* abandon) const {
@@ -115,9 +114,9 @@ bool LocalBundleAdjuster::solve(BundleWindow& window, const std::atomic<bool>* a
     ceres::CostFunction* cost = o.residual.hasDepth()
                                     ? static_cast<ceres::CostFunction*>(
                                           new ceres::AutoDiffCostFunction<ObservationCost, 3, 6, 3>(
-                                              new ObservationCost(o.residual, config_.camera)))
+                                              new ObservationCost(o.residual, camera_)))
                                     : new ceres::AutoDiffCostFunction<ObservationCost, 2, 6, 3>(
-                                          new ObservationCost(o.residual, config_.camera));
+                                          new ObservationCost(o.residual, camera_));
     problem.AddResidualBlock(cost, new ceres::HuberLoss(std::sqrt(chi2Bound(o.residual))),
                              window.poses[o.pose].params.data(), window.points[o.point].data());
   }
@@ -125,11 +124,8 @@ bool LocalBundleAdjuster::solve(BundleWindow& window, const std::atomic<bool>* a
     if (pose.fixed && problem.HasParameterBlock(pose.params.data()))
       problem.SetParameterBlockConstant(pose.params.data());
 
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::SPARSE_SCHUR;
-  options.max_num_iterations = window.max_iterations;
-  options.logging_type = ceres::SILENT;
-  options.num_threads = 1;
+  ceres::Solver::Options options = toCeres(options_.bundle_solver);
+  options.max_num_iterations = window.max_iterations;  // local or global (gatherAll)
   std::optional<AbandonCallback> abandoned;
   if (abandon) options.callbacks.push_back(&abandoned.emplace(*abandon));
   ceres::Solver::Summary summary;
@@ -145,8 +141,8 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::apply(Map& map, const BundleWind
   // Observations that are still outliers leave the map, if still linked as they were.
   for (const auto& o : window.observations) {
     double r[3] = {0.0, 0.0, 0.0};
-    o.residual.evaluate(config_.camera, window.poses[o.pose].params.data(),
-                        window.points[o.point].data(), r);
+    o.residual.evaluate(camera_, window.poses[o.pose].params.data(), window.points[o.point].data(),
+                        r);
     const double e2 = r[0] * r[0] + r[1] * r[1] + (o.residual.hasDepth() ? r[2] * r[2] : 0.0);
     if (!(e2 > chi2Bound(o.residual))) continue;
     KeyFrame& kf = *window.poses[o.pose].keyframe;

@@ -16,17 +16,17 @@ std::map<long, int> covisibilityById(const KeyFrame& keyframe) {
 
 }  // namespace
 
-LoopCloser::LoopCloser(LoopDetector detector, const SystemConfig& config,
-                       const LandmarkFuser& fuser, Map& map)
+LoopCloser::LoopCloser(LoopDetector detector, const PinholeCamera& camera,
+                       const MapperOptions& options, const LandmarkFuser& fuser, Map& map)
     : detector_(std::move(detector)),
-      builder_(config.lines, config.camera, config.loop, config.dynamic.mask_dilation_px),
-      corrector_(config.loop_correction, fuser, map),
-      options_(config.loop_correction),
+      builder_(options.lines, camera, options.loop, options.mask_dilation_px),
+      corrector_(options.loop_correction, fuser, map),
+      options_(options.loop_correction),
       orb_file_(
-          std::filesystem::path(vocabularyPath(config.loop.orb_vocabulary, DescriptorKind::kOrb))
+          std::filesystem::path(vocabularyPath(options.loop.orb_vocabulary, DescriptorKind::kOrb))
               .filename()),
       lbd_file_(
-          std::filesystem::path(vocabularyPath(config.loop.lbd_vocabulary, DescriptorKind::kLbd))
+          std::filesystem::path(vocabularyPath(options.loop.lbd_vocabulary, DescriptorKind::kLbd))
               .filename()),
       map_(map) {}
 

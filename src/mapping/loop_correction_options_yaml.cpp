@@ -1,5 +1,7 @@
 #include "ply_slam/mapping/loop_correction_options_yaml.h"
 
+#include "ply_slam/common/solver_options_yaml.h"
+
 namespace ply_slam {
 
 LoopCorrectionOptions readLoopCorrectionOptions(ConfigSection section) {
@@ -15,6 +17,7 @@ LoopCorrectionOptions readLoopCorrectionOptions(ConfigSection section) {
   section.readInRange("pose_graph_rotation_sigma_rad", o.pose_graph.rotation_sigma_rad, 1e-9, 10.0);
   section.readInRange("pose_graph_translation_sigma_m", o.pose_graph.translation_sigma_m, 1e-9,
                       100.0);
+  readLinearSolver(section, "pose_graph_linear_solver", o.pose_graph.linear_solver);
   section.readInRange("global_ba_iterations", o.global_ba_iterations, 0, 10000);
   section.rejectUnknownKeys();
   return o;

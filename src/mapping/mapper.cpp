@@ -6,18 +6,19 @@
 
 namespace ply_slam {
 
-Mapper::Mapper(const SystemConfig& config, Map& map, bool wait_for_global_ba)
-    : config_(config),
+Mapper::Mapper(const PinholeCamera& camera, const MapperOptions& options, Map& map,
+               bool wait_for_global_ba)
+    : options_(options),
       map_(map),
-      fuser_(config),
-      bundle_adjuster_(config),
-      point_culler_(config.culling.points),
-      keyframe_culler_(config.culling.keyframes),
+      fuser_(camera, options.orb, options.local),
+      bundle_adjuster_(camera, options.local),
+      point_culler_(options.culling.points),
+      keyframe_culler_(options.culling.keyframes),
       wait_for_global_ba_(wait_for_global_ba),
       global_ba_(bundle_adjuster_) {
-  if (config_.loop.enabled)
-    loop_closer_ = std::make_unique<LoopCloser>(
-        LoopDetector::fromOptions(config_.camera, config_.loop), config_, fuser_, map_);
+  if (options_.loop.enabled)
+    loop_closer_ = std::make_unique<LoopCloser>(LoopDetector::fromOptions(camera, options_.loop),
+                                                camera, options_, fuser_, map_);
 }
 
 KeyFrame* Mapper::spanningTreeParent(const KeyFrame& keyframe) const {
@@ -37,7 +38,7 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   std::unique_lock<std::mutex> lock(map_.updateMutex());
   stats.global_ba_applied = writeBackSolvedGlobal().has_value();
   const std::vector<KeyFrame*> neighbours =
-      keyframe->bestCovisible(config_.tracking.local_map_keyframes);
+      keyframe->bestCovisible(options_.local.window_keyframes);
   fuser_.fuse(map_, *keyframe, neighbours);
   keyframe->parent = spanningTreeParent(*keyframe);
   BundleWindow window = bundle_adjuster_.gatherLocal(*keyframe);
@@ -46,8 +47,8 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   lock.lock();
   stats.bundle_adjustment = bundle_adjuster_.apply(map_, window);
   // Fusion and adjustment changed who sees what: the neighbourhood is taken again.
-  stats.culled_points = point_culler_.cull(
-      map_, *keyframe, keyframe->bestCovisible(config_.tracking.local_map_keyframes));
+  stats.culled_points =
+      point_culler_.cull(map_, *keyframe, keyframe->bestCovisible(options_.local.window_keyframes));
   stats.culled_keyframes = keyframe_culler_.cull(map_, *keyframe, keep ? keep() : std::set<long>{});
   if (loop_closer_)
     for (long id : stats.culled_keyframes) loop_closer_->removeKeyFrame(id);
@@ -63,7 +64,7 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
       loop_closer_->addKeyFrame(keyframe, std::move(described));
   if (!correction) return correction;
   tell(correction->world_correction);
-  const int iterations = config_.loop_correction.global_ba_iterations;
+  const int iterations = options_.loop_correction.global_ba_iterations;
   if (iterations <= 0) return correction;
   Stopwatch watch;
   global_ba_.start(bundle_adjuster_.gatherAll(map_, iterations));
@@ -122,7 +123,7 @@ MapUpdate Mapper::localUpdate(const KeyFrame& keyframe) const {
   MapUpdate update;
   update.stamp = keyframe.stamp;
   std::vector<const KeyFrame*> window{&keyframe};
-  for (const KeyFrame* kf : keyframe.bestCovisible(config_.tracking.local_map_keyframes))
+  for (const KeyFrame* kf : keyframe.bestCovisible(options_.local.window_keyframes))
     window.push_back(kf);
   std::set<long> points, lines;
   for (const KeyFrame* kf : window) {

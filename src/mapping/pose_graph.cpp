@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ply_slam/common/ceres_solver_options.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/mapping/relative_pose_cost.h"
 
@@ -26,13 +27,11 @@ void checkOptions(const PoseGraphOptions& options) {
 }
 
 ceres::Solver::Options solverOptions(const PoseGraphOptions& options) {
-  ceres::Solver::Options solver;
-  // Each pose touches only its few neighbours: the normal equations are sparse.
-  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.max_num_iterations = options.max_iterations;
+  SolverOptions solver;  // Ceres' tolerances
+  solver.linear_solver = options.linear_solver;
+  solver.max_iterations = options.max_iterations;
   solver.num_threads = options.num_threads;
-  solver.logging_type = ceres::SILENT;
-  return solver;
+  return toCeres(solver);
 }
 
 }  // namespace

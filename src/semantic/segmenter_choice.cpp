@@ -31,11 +31,11 @@ void SegmenterChoice::check() const {
     throw std::invalid_argument("--model and --input need --segmenter yolo");
 }
 
-std::unique_ptr<Segmenter> SegmenterChoice::make(const YoloParams& config,
+std::unique_ptr<Segmenter> SegmenterChoice::make(const YoloOptions& config,
                                                  const std::string& sequence_folder) const {
   if (kind == "masks") return std::make_unique<MaskFolderSegmenter>(sequence_folder);
   if (kind != "yolo") return nullptr;
-  YoloParams yolo = config;
+  YoloOptions yolo = config;
   if (!model.empty()) yolo.model_path = model;
   if (input_width > 0) {
     yolo.input_width = input_width;

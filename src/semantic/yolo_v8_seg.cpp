@@ -51,7 +51,7 @@ std::vector<std::string> readClassNames(const std::string& path) {
 
 // A fixed-size export runs on any input of its area: 480x640 into a 640x480 export gives
 // boxes and masks from the wrong anchors (person IoU 0.59 instead of 0.91) without an error.
-void checkInputSize(const YoloParams& params) {
+void checkInputSize(const YoloOptions& params) {
   const std::vector<std::int64_t> shape = readOnnxInputShape(params.model_path);
   if (shape.size() != 4 || shape[2] <= 0 || shape[3] <= 0) return;  // dynamic: any size
   const std::int64_t height = shape[2], width = shape[3];
@@ -66,7 +66,7 @@ void checkInputSize(const YoloParams& params) {
 
 }  // namespace
 
-YoloV8Seg::YoloV8Seg(const YoloParams& params) : params_(params) {
+YoloV8Seg::YoloV8Seg(const YoloOptions& params) : params_(params) {
   if (params_.model_path.empty())
     throw std::runtime_error("no YOLOv8-seg model given (config segmentation.model or --model)");
   if (!std::filesystem::exists(params_.model_path))

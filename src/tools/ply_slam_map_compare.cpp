@@ -190,13 +190,12 @@ int run(const Options& options) {
   const AlignedGroundTruth fitted =
       options.fit_clock_offset ? fitClockOffset(gt, keyframes, recorded) : recorded;
 
-  const DenseParams& dense = config.dense;
+  const DenseOptions& dense = config.dense;
   const ClassPalette palette = ClassPalette::configured(dense.palette);
   const KeyFrameCloudBuilder builder(dense, palette);
-  const auto mode = SemanticOctree::parseColourMode(dense.colour_mode);
   const auto octree = [&] {
-    return SemanticOctree(dense.octree_resolution, mode, palette, dense.octree_occupancy,
-                          dense.ray_margin);
+    return SemanticOctree(dense.octree_resolution, dense.colour_mode, palette,
+                          dense.octree_occupancy, dense.ray_margin);
   };
   // A third octree only when the fitted offset differs from the recorded stamps.
   const bool shifted = options.fit_clock_offset && fitted.offset != recorded.offset;

@@ -30,7 +30,7 @@ const char* const kUsage =
 
 struct Options {
   std::string sequence_dir, save_dir;
-  YoloParams params;
+  YoloOptions params;
   int every = 1;
 };
 
@@ -71,7 +71,7 @@ Options parse(int argc, char** argv) {
 int run(const Options& options) {
   const std::string& sequence_dir = options.sequence_dir;
   const std::string& save_dir = options.save_dir;
-  const YoloParams& params = options.params;
+  const YoloOptions& params = options.params;
   const int every = options.every;
 
   YoloV8Seg yolo(params);

@@ -212,7 +212,7 @@ Json statsJson(const ErrorStats& s) {
 // The ground-truth masks of the moving things (active classes) in one frame, undilated: what
 // a ghost in the maps would come from.
 cv::Mat walkerPixels(const std::vector<Instance>& ground_truth, const cv::Size& size,
-                     const DynamicParams& dynamic) {
+                     const DynamicOptions& dynamic) {
   cv::Mat walkers = cv::Mat::zeros(size, CV_8UC1);
   for (const auto& instance : ground_truth)
     if (std::count(dynamic.active_classes.begin(), dynamic.active_classes.end(),
@@ -476,7 +476,7 @@ Json summaryJson(const Options& options, const SystemConfig& config, const TumSe
                {"map_points", system.map().numMapPoints()},
                {"map_points_culled", c.points_culled},
                {"segmenter", options.segmentation.kind},
-               {"dynamic_mode", config.dynamic.mode},
+               {"dynamic_mode", toString(config.dynamic.mode)},
                {"dynamic_features_dropped", c.dynamic_features},
                {"segmentation_ms_median", rounded(median(c.segment_ms, 0.0))}};
   return json;
@@ -484,7 +484,7 @@ Json summaryJson(const Options& options, const SystemConfig& config, const TumSe
 
 Json linesJson(const SystemConfig& config, const System& system, const RunCounts& c) {
   return {{"enabled", config.lines.enabled},
-          {"balance", config.lines.balance},
+          {"balance", toString(config.lines.balance)},
           {"map_lines", system.map().numMapLines()},
           {"line_inliers_mean", rounded(c.frames > 0 ? c.line_inliers / c.frames : 0.0)},
           {"lines_ms_median", rounded(median(c.lines_ms, 0.0))},
@@ -525,7 +525,7 @@ int run(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
   if (options.no_loop) config.loop.enabled = false;
-  if (!options.dynamic.empty()) config.dynamic.mode = options.dynamic;
+  if (!options.dynamic.empty()) config.dynamic.mode = parseDynamicMode(options.dynamic);
   const TumSequence sequence(options.sequence);
   fs::create_directories(options.out);
   const fs::path out(options.out);

@@ -1,5 +1,6 @@
 #include "ply_slam/tracking/pose_optimizer.h"
 
+#include "ply_slam/common/ceres_solver_options.h"
 #include "ply_slam/common/point_residual.h"
 #include "ply_slam/common/se3_params.h"
 
@@ -121,12 +122,7 @@ int PoseOptimizer::optimize(const std::vector<PointObservation>& observations,
 
   Se3Params pose = toParams(T_cw);
 
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = params_.max_iterations;
-  options.function_tolerance = params_.function_tolerance;
-  options.logging_type = ceres::SILENT;
-  options.num_threads = 1;
+  const ceres::Solver::Options options = toCeres(params_.solver);
 
   int num_inliers = static_cast<int>(std::count(inlier.begin(), inlier.end(), true));
   for (int round = 0; round < params_.rounds; ++round) {

@@ -10,14 +10,12 @@
 namespace ply_slam {
 namespace {
 
-constexpr int kMinPnpMatches = 15;
-constexpr double kMaxVelocityGap = 0.2;  // s; beyond, the last motion says little
-
-PoseOptimizerParams optimizerParams(const TrackingParams& t) {
+PoseOptimizerParams optimizerParams(const TrackingOptions& t) {
   PoseOptimizerParams p;
   p.chi2_pixel = t.chi2_outlier;
-  p.chi2_depth = t.chi2_outlier + 1.824;  // 3-DoF 95 % (7.815) for the 2-DoF 5.991 default
+  p.chi2_depth = withDepthDof(t.chi2_outlier);
   p.rounds = t.optimisation_rounds;
+  p.solver = t.pose_solver;
   return p;
 }
 
@@ -39,14 +37,17 @@ const char* toString(TrackingState state) {
   return "?";
 }
 
-Tracker::Tracker(const SystemConfig& config, Map& map, const std::vector<double>& scales)
-    : config_(config),
+Tracker::Tracker(const PinholeCamera& camera, const TrackingOptions& tracking,
+                 const OrbOptions& orb, const LineOptions& lines, Map& map,
+                 const std::vector<double>& scales)
+    : camera_(camera),
+      options_(tracking),
+      lines_(lines),
       map_(map),
       scales_(scales),
-      optimizer_(config.camera, optimizerParams(config.tracking)),
-      matcher_(config_.camera, std::log(config.orb.scale_factor), config.orb.num_levels),
-      line_matcher_(config.lines, config.camera),
-      line_balance_(config.lines.balance == "one" ? LineBalance::kOne : LineBalance::kPaper) {}
+      optimizer_(camera, optimizerParams(tracking)),
+      matcher_(camera_, std::log(orb.scale_factor), orb.num_levels),
+      line_matcher_(lines, camera) {}
 
 TrackingResult Tracker::track(Frame& frame) {
   TrackingResult result;
@@ -76,21 +77,21 @@ TrackingResult Tracker::track(Frame& frame) {
       // exposure motion (rolling shutter, depth delay) with it and solve again.
       const CameraVelocity velocity =
           CameraVelocity::between(last_frame_->T_cw, frame.T_cw, frame.stamp - last_frame_->stamp);
-      frame.features.correctMotion(config_.camera, &velocity);
+      frame.features.correctMotion(camera_, &velocity);
       const int corrected = optimizePose(frame);  // first: it classifies the lines too
-      ok = corrected + frame.numLineMatches() >= config_.tracking.min_tracked_points;
+      ok = corrected + frame.numLineMatches() >= options_.min_tracked_points;
     }
     if (ok) {
       inliers = trackLocalMap(frame);
       // Line inliers count as tracked features too (none when lines are disabled).
-      ok = inliers + frame.numLineMatches() >= config_.tracking.min_tracked_points &&
+      ok = inliers + frame.numLineMatches() >= options_.min_tracked_points &&
            !farFromPrediction(frame);
     }
     if (ok) {
       // A velocity needs two consecutive tracked frames close enough in time (none before the
       // first relocalisation in a loaded map).
       const double dt = last_frame_ ? frame.stamp - last_frame_->stamp : 0.0;
-      has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= kMaxVelocityGap;
+      has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= options_.max_velocity_gap_s;
       if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
       updatePointStatistics(frame);
@@ -135,13 +136,13 @@ bool Tracker::farFromPrediction(const Frame& frame) const {
   // Camera centres: where the prediction and the solve put the camera.
   const Eigen::Vector3d gap =
       frame.T_cw.inverse().translation() - predictedPose(frame.stamp).inverse().translation();
-  return gap.norm() > config_.tracking.max_prediction_error;
+  return gap.norm() > options_.max_prediction_error;
 }
 
 bool Tracker::initialise(Frame& frame) {
   int with_depth = 0;
   for (size_t i = 0; i < frame.features.size(); ++i) with_depth += frame.features.hasDepth(i);
-  if (with_depth < 2 * config_.tracking.min_tracked_points) return false;
+  if (with_depth < 2 * options_.min_tracked_points) return false;
   frame.T_cw = Eigen::Isometry3d::Identity();
   createKeyFrame(frame);
   state_ = TrackingState::kOk;
@@ -162,20 +163,20 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
     levels.push_back(last_frame_->features.level(i));
   }
   ProjectionMatchParams params;
-  params.radius_px = config_.tracking.search_radius_px;
-  params.max_distance = config_.tracking.max_descriptor_distance;
-  params.nn_ratio = config_.tracking.nn_ratio;
+  params.radius_px = options_.search_radius_px;
+  params.max_distance = options_.max_descriptor_distance;
+  params.nn_ratio = options_.nn_ratio;
   frame.clearMatches();
   int matches = matcher_.match(frame, points, &levels, params);
-  if (matches < 2 * config_.tracking.min_tracked_points) {
+  if (matches < 2 * options_.min_tracked_points) {
     frame.clearMatches();
     params.radius_px *= 2;  // fast motion: a wider window
     matches = matcher_.match(frame, points, &levels, params);
   }
-  const int line_matches = config_.lines.enabled ? matchLines(frame, local_lines_) : 0;
-  if (matches + line_matches < config_.tracking.min_tracked_points) return false;
+  const int line_matches = lines_.enabled ? matchLines(frame, local_lines_) : 0;
+  if (matches + line_matches < options_.min_tracked_points) return false;
   const int inliers = optimizePose(frame);  // first: it classifies the lines too
-  return inliers + frame.numLineMatches() >= config_.tracking.min_tracked_points;
+  return inliers + frame.numLineMatches() >= options_.min_tracked_points;
 }
 
 bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates) {
@@ -186,7 +187,8 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
     points.push_back(p);
     descriptors.push_back(p->descriptor);
   }
-  if (static_cast<int>(points.size()) < kMinPnpMatches || frame.features.size() == 0) return false;
+  if (static_cast<int>(points.size()) < options_.pnp_min_matches || frame.features.size() == 0)
+    return false;
 
   cv::BFMatcher bf(cv::NORM_HAMMING);
   std::vector<std::vector<cv::DMatch>> knn;
@@ -195,7 +197,7 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
   std::vector<cv::Point2f> image;
   std::vector<std::pair<size_t, size_t>> pairs;  // (feature, point)
   for (const auto& m : knn) {
-    if (m.empty() || m[0].distance > config_.tracking.max_descriptor_distance) continue;
+    if (m.empty() || m[0].distance > options_.max_descriptor_distance) continue;
     if (m.size() > 1 && m[0].distance > 0.8 * m[1].distance) continue;
     const auto& p = points[m[0].trainIdx]->position;
     const auto& uv = frame.features.undistorted[m[0].queryIdx];
@@ -203,15 +205,14 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
     image.emplace_back(uv.x(), uv.y());
     pairs.emplace_back(m[0].queryIdx, m[0].trainIdx);
   }
-  if (static_cast<int>(object.size()) < kMinPnpMatches) return false;
+  if (static_cast<int>(object.size()) < options_.pnp_min_matches) return false;
 
   cv::Mat rvec, tvec;
   std::vector<int> inliers;
-  const bool solved =
-      cv::solvePnPRansac(object, image, cv::Mat(config_.camera.K()), cv::noArray(), rvec, tvec,
-                         false, config_.tracking.pnp_iterations,
-                         config_.tracking.pnp_reprojection_px, 0.99, inliers, cv::SOLVEPNP_EPNP);
-  if (!solved || static_cast<int>(inliers.size()) < kMinPnpMatches) return false;
+  const bool solved = cv::solvePnPRansac(
+      object, image, cv::Mat(camera_.K()), cv::noArray(), rvec, tvec, false,
+      options_.pnp_iterations, options_.pnp_reprojection_px, 0.99, inliers, cv::SOLVEPNP_EPNP);
+  if (!solved || static_cast<int>(inliers.size()) < options_.pnp_min_matches) return false;
 
   cv::Mat R;
   cv::Rodrigues(rvec, R);
@@ -223,7 +224,7 @@ bool Tracker::trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPo
   frame.T_cw.translation() = t_eigen;
   frame.clearMatches();
   for (int k : inliers) frame.map_points[pairs[k].first] = points[pairs[k].second];
-  return optimizePose(frame) >= kMinPnpMatches;
+  return optimizePose(frame) >= options_.pnp_min_matches;
 }
 
 std::vector<std::shared_ptr<KeyFrame>> Tracker::relocalisationOrder(const Frame& frame) const {
@@ -271,7 +272,7 @@ void Tracker::updateLocalMap(const Frame& frame) {
 
   std::vector<KeyFrame*> chosen;
   for (const auto& [n, kf] : ranked) {
-    if (static_cast<int>(chosen.size()) >= config_.tracking.local_map_keyframes) break;
+    if (static_cast<int>(chosen.size()) >= options_.local_map_keyframes) break;
     chosen.push_back(kf);
   }
   if (last_keyframe_ &&
@@ -287,7 +288,7 @@ void Tracker::updateLocalMap(const Frame& frame) {
     }
   }
   local_lines_.clear();
-  if (!config_.lines.enabled) return;
+  if (!lines_.enabled) return;
   for (KeyFrame* kf : chosen) {
     for (const auto& l : kf->map_lines) {
       if (!l || l->bad || l->local_map_frame == frame.id) continue;
@@ -318,9 +319,9 @@ int Tracker::matchLines(Frame& frame,
 int Tracker::trackLocalMap(Frame& frame) {
   updateLocalMap(frame);
   ProjectionMatchParams params;
-  params.radius_px = config_.tracking.search_radius_px / 3.0;  // the pose is already refined
-  params.max_distance = config_.tracking.max_descriptor_distance;
-  params.nn_ratio = config_.tracking.nn_ratio;
+  params.radius_px = options_.search_radius_px / 3.0;  // the pose is already refined
+  params.max_distance = options_.max_descriptor_distance;
+  params.nn_ratio = options_.nn_ratio;
   // Outliers of the first estimate may be matched again to a better landmark.
   for (size_t i = 0; i < frame.map_points.size(); ++i)
     if (frame.outlier[i]) frame.map_points[i] = nullptr;
@@ -329,7 +330,7 @@ int Tracker::trackLocalMap(Frame& frame) {
   for (const auto& p : local_points_)
     if (p->last_projected_frame != frame.id) candidates.push_back(p);
   matcher_.match(frame, candidates, nullptr, params);
-  if (config_.lines.enabled) matchLines(frame, local_lines_);  // again, with the refined pose
+  if (lines_.enabled) matchLines(frame, local_lines_);  // again, with the refined pose
   return optimizePose(frame);
 }
 
@@ -345,13 +346,13 @@ int Tracker::optimizePose(Frame& frame) {
     o.pixel_sigma = f.scale(i);
     if (f.hasDepth(i)) {
       o.depth = f.depth[i];
-      o.depth_sigma = std::sqrt(config_.camera.depth_noise.varianceAgainstMap(o.depth));
+      o.depth_sigma = std::sqrt(camera_.depth_noise.varianceAgainstMap(o.depth));
     }
     observations.push_back(o);
     index.push_back(i);
   }
   std::vector<bool> inlier;
-  if (!config_.lines.enabled) {
+  if (!lines_.enabled) {
     const int n = optimizer_.optimize(observations, frame.T_cw, inlier);
     for (size_t k = 0; k < index.size(); ++k) frame.outlier[index[k]] = !inlier[k];
     return n;
@@ -365,12 +366,12 @@ int Tracker::optimizePose(Frame& frame) {
     o.start = l->start;
     o.end = l->end;
     o.line = frame.lines.lines[i].line();
-    o.pixel_sigma = config_.lines.residual_sigma_px;
+    o.pixel_sigma = lines_.residual_sigma_px;
     lines.push_back(o);
     line_index.push_back(i);
   }
   std::vector<bool> line_inlier;
-  const double weight = lineBalanceFactor(line_balance_, static_cast<int>(observations.size()));
+  const double weight = lineBalanceFactor(lines_.balance, static_cast<int>(observations.size()));
   const int n = optimizer_.optimize(observations, lines, weight, frame.T_cw, inlier, line_inlier);
   for (size_t k = 0; k < index.size(); ++k) frame.outlier[index[k]] = !inlier[k];
   for (size_t k = 0; k < line_index.size(); ++k)
@@ -401,9 +402,9 @@ void Tracker::updatePointStatistics(Frame& frame) {
 }
 
 void Tracker::fuseLineFits(const Frame& frame) {
-  const DepthNoiseModel& noise = config_.camera.depth_noise;
+  const DepthNoiseModel& noise = camera_.depth_noise;
   const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
-  const double min_cos = std::cos(config_.lines.match_angle_deg * M_PI / 180.0);
+  const double min_cos = std::cos(lines_.match_angle_deg * M_PI / 180.0);
   for (size_t i = 0; i < frame.map_lines.size(); ++i) {
     const Line3D& fit = frame.lines.lines3d[i];
     if (!frame.map_lines[i] || !fit.valid) continue;
@@ -421,7 +422,7 @@ void Tracker::fuseLineFits(const Frame& frame) {
 }
 
 void Tracker::fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const {
-  const DepthNoiseModel& noise = config_.camera.depth_noise;
+  const DepthNoiseModel& noise = camera_.depth_noise;
   line.fuse(T_wc * fit.start, T_wc * fit.end, 1.0 / noise.variance(fit.start.z()),
             1.0 / noise.variance(fit.end.z()));
 }
@@ -429,7 +430,7 @@ void Tracker::fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d&
 bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
   if (localisation_only_) return false;
   if (!last_keyframe_) return true;
-  const auto& t = config_.tracking;
+  const auto& t = options_;
   if (frame.id - last_keyframe_->frame_id >= t.keyframe_max_frames) return true;
   // Landmarks seen from two keyframes are the established ones the frame should keep seeing.
   if (inliers < t.keyframe_min_ratio * last_keyframe_->trackedPoints(2)) return true;
@@ -449,13 +450,13 @@ void Tracker::createKeyFrame(Frame& frame) {
   map_.addKeyFrame(kf);
 
   const auto& f = frame.features;
-  const auto& cam = config_.camera;
+  const auto& cam = camera_;
   const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
   const Eigen::Vector3d centre = T_wc.translation();
   const double last_scale = scales_.back();
   for (size_t i = 0; i < f.size(); ++i) {
     auto& p = frame.map_points[i];
-    const bool has_depth = f.hasDepth(i) && f.depth[i] <= config_.tracking.max_point_depth;
+    const bool has_depth = f.hasDepth(i) && f.depth[i] <= options_.max_point_depth;
     if (p && !frame.outlier[i]) {
       map_.addObservation(*kf, i, p);
       if (has_depth) {
@@ -481,7 +482,7 @@ void Tracker::createKeyFrame(Frame& frame) {
     p = point;
     frame.outlier[i] = false;
   }
-  if (config_.lines.enabled) {
+  if (lines_.enabled) {
     // Line landmarks: the matched ones gain an observation, the accepted 3D fits of the rest
     // become new ones (world frame by the keyframe's pose).
     kf->map_lines.resize(frame.lines.size());

@@ -8,7 +8,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/config_error.h"
+#include "ply_slam/common/enum_words.h"
 
 namespace ply_slam {
 
@@ -52,6 +53,15 @@ class ConfigSection {
     read(key, value);
     if (!(value >= lo && value <= hi))
       fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+
+  // A word of `words` (absent: value unchanged); another word fails with `what` ("must be ...").
+  template <typename Enum, std::size_t N>
+  void readWord(const std::string& key, Enum& value, const EnumWord<Enum> (&words)[N],
+                const std::string& what) {
+    std::string word = wordOf(words, value);
+    read(key, word);
+    if (!valueOf(words, word, value)) fail(key, what);
   }
 
   void readList(const std::string& key, std::vector<std::string>& value) {

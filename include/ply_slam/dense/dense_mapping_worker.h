@@ -11,8 +11,8 @@
 #include <thread>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/dense/dense_map.h"
+#include "ply_slam/dense/dense_options.h"
 #include "ply_slam/dense/key_frame_cloud_builder.h"
 #include "ply_slam/dense/semantic_octree.h"
 
@@ -22,7 +22,7 @@ namespace ply_slam {
 // packets over with push(), which only queues them, and never waits for the maps.
 class DenseMappingWorker {
  public:
-  explicit DenseMappingWorker(const DenseParams& params);
+  explicit DenseMappingWorker(const DenseOptions& params);
   ~DenseMappingWorker();  // finish()
   DenseMappingWorker(const DenseMappingWorker&) = delete;
   DenseMappingWorker& operator=(const DenseMappingWorker&) = delete;
@@ -54,7 +54,7 @@ class DenseMappingWorker {
   std::string firstError() const;
 
  private:
-  DenseMappingWorker(const DenseParams& params, const ClassPalette& palette);  // palette read once
+  DenseMappingWorker(const DenseOptions& params, const ClassPalette& palette);  // palette read once
 
   struct Job {
     std::shared_ptr<const KeyFramePacket> packet;

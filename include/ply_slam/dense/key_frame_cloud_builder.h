@@ -2,8 +2,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/dense/class_palette.h"
+#include "ply_slam/dense/dense_options.h"
 #include "ply_slam/dense/key_frame_cloud.h"
 #include "ply_slam/map/key_frame_packet.h"
 
@@ -17,7 +18,7 @@ namespace ply_slam {
 // cached, so one builder must not be shared between threads).
 class KeyFrameCloudBuilder {
  public:
-  KeyFrameCloudBuilder(const DenseParams& params, ClassPalette palette);
+  KeyFrameCloudBuilder(const DenseOptions& params, ClassPalette palette);
 
   // `tag_mask` (8UC1 of the image size, may be empty): evaluation only, fills cloud.tags.
   // Throws std::invalid_argument naming the fault for a packet that cannot be used (empty or
@@ -29,7 +30,7 @@ class KeyFrameCloudBuilder {
   const cv::Mat& rayTable(const PinholeCamera& camera) const;
   cv::Mat excludedPixels(const KeyFramePacket& packet) const;
 
-  DenseParams params_;
+  DenseOptions params_;
   ClassPalette palette_;
   mutable cv::Mat rays_;
   mutable PinholeCamera rays_camera_;

@@ -8,6 +8,7 @@
 
 #include "ply_slam/dense/class_palette.h"
 #include "ply_slam/dense/key_frame_cloud.h"
+#include "ply_slam/dense/octree_colour_mode.h"
 
 namespace octomap {
 class ColorOcTree;
@@ -22,7 +23,7 @@ namespace ply_slam {
 // class histogram per hit voxel; voxels are coloured by their majority class (palette) or mean RGB.
 class SemanticOctree {
  public:
-  enum class ColourMode { kClass, kRgb };
+  using ColourMode = OctreeColourMode;
 
   // One occupied leaf of the tree.
   struct Voxel {
@@ -45,8 +46,6 @@ class SemanticOctree {
   ~SemanticOctree();
   SemanticOctree(const SemanticOctree&) = delete;
   SemanticOctree& operator=(const SemanticOctree&) = delete;
-
-  static ColourMode parseColourMode(const std::string& text);  // "class" or "rgb"
 
   // Ray-casts the keyframe's points and clearing rays (placed by cloud.T_wc) from its camera
   // centre. One update per voxel and keyframe: occupied if a point ends in it, else free if a

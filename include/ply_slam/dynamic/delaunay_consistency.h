@@ -4,7 +4,8 @@
 #include <optional>
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/dynamic/delaunay_consistency_options.h"
 
 namespace ply_slam {
 
@@ -36,7 +37,7 @@ struct FeatureCorrespondence {
 // fitted to it must carry each feature onto its current position.
 class DelaunayConsistency {
  public:
-  DelaunayConsistency(const PinholeCamera& camera, const DelaunayConsistencyParams& params)
+  DelaunayConsistency(const PinholeCamera& camera, const DelaunayConsistencyOptions& params)
       : camera_(camera), params_(params) {}
 
   // The camera's motion fitted to the static scene (previous -> current) and how much larger
@@ -105,7 +106,7 @@ class DelaunayConsistency {
                                 const std::vector<bool>& use) const;
 
   PinholeCamera camera_;
-  DelaunayConsistencyParams params_;
+  DelaunayConsistencyOptions params_;
 };
 
 }  // namespace ply_slam

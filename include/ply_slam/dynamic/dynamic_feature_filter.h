@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ply_slam/dynamic/delaunay_consistency.h"
+#include "ply_slam/dynamic/dynamic_filter_options.h"
 
 namespace ply_slam {
 
@@ -30,7 +31,7 @@ struct DynamicDecision {
 // Features in DP are dropped wherever they are, labelled or not.
 class DynamicFeatureFilter {
  public:
-  DynamicFeatureFilter(const PinholeCamera& camera, const DynamicFilterParams& params)
+  DynamicFeatureFilter(const PinholeCamera& camera, const DynamicFilterOptions& params)
       : consistency_(camera, params.consistency), params_(params) {}
 
   // instance[i]: the instance id under feature i, or 0; motion: class kind per instance id;
@@ -43,7 +44,7 @@ class DynamicFeatureFilter {
 
  private:
   DelaunayConsistency consistency_;
-  DynamicFilterParams params_;
+  DynamicFilterOptions params_;
 };
 
 }  // namespace ply_slam

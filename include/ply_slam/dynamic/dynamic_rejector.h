@@ -8,20 +8,14 @@
 #include <vector>
 
 #include "ply_slam/common/camera_velocity.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/dynamic/depth_surfaces.h"
 #include "ply_slam/dynamic/dynamic_feature_filter.h"
+#include "ply_slam/dynamic/dynamic_options.h"
 #include "ply_slam/features/frame_features.h"
 #include "ply_slam/features/line_feature.h"
 #include "ply_slam/semantic/instance.h"
 
 namespace ply_slam {
-
-enum class DynamicMode { kOff, kGeometric, kSemantic, kFull };
-DynamicMode parseDynamicMode(const std::string& mode);  // throws std::invalid_argument
-// Full mode without a segmenter has no labels to fuse: it judges the depth image's surfaces as
-// geometric mode does. Returns the mode to run with; the others are unchanged.
-std::string modeWithoutSegmenter(const std::string& mode);
 
 // Why a feature was left out of tracking, or that it was kept.
 enum class FeatureFate : unsigned char { kKept, kGeometric, kSemantic };
@@ -47,7 +41,7 @@ struct DynamicRejection {
 // decides by the configured mode which features and instances are dynamic.
 class DynamicRejector {
  public:
-  DynamicRejector(const DynamicParams& params, const PinholeCamera& camera);
+  DynamicRejector(const DynamicOptions& params, const PinholeCamera& camera);
 
   // velocity: the camera's, to predict where the earlier frame's features are now; may be null.
   // presumed: ids of instances to treat as dynamic whatever this frame shows (InstanceMemory)
@@ -109,7 +103,7 @@ class DynamicRejector {
   cv::Mat unionMask(const std::vector<Instance>& instances, const std::set<int>& ids) const;
   cv::Mat dilated(const cv::Mat& mask) const;  // by mask_dilation_px
 
-  DynamicParams params_;
+  DynamicOptions params_;
   DynamicMode mode_;
   PinholeCamera camera_;
   DynamicFeatureFilter filter_;

@@ -4,10 +4,10 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_3d.h"
 #include "ply_slam/features/line_feature.h"
+#include "ply_slam/features/line_options.h"
 #include "ply_slam/features/registered_depth.h"
 
 namespace ply_slam {
@@ -35,7 +35,7 @@ namespace ply_slam {
 // owner's depth. No owner: the paper's fit stays.
 class LineDepthRefiner {
  public:
-  LineDepthRefiner(const LineParams& params, const PinholeCamera& camera);
+  LineDepthRefiner(const LineOptions& params, const PinholeCamera& camera);
 
   // line: the accepted fit of segment (camera frame). True when its ends were replaced; off
   // (false) when lines.surface_band_px is 0.
@@ -57,7 +57,7 @@ class LineDepthRefiner {
   };
   SideFit fitSide(const Band& band, const cv::Mat& depth_m, double side) const;
 
-  LineParams params_;
+  LineOptions params_;
   PinholeCamera camera_;
   RegisteredDepth depth_;
 };

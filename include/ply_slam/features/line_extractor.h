@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_feature.h"
 #include "ply_slam/features/line_merger.h"
+#include "ply_slam/features/line_options.h"
 
 namespace ply_slam {
 
@@ -24,7 +24,7 @@ namespace ply_slam {
 // Not tied to one thread: each call builds its own OpenCV detector, whose state is per image.
 class LineExtractor {
  public:
-  explicit LineExtractor(const LineParams& params);
+  explicit LineExtractor(const LineOptions& params);
 
   const std::string& detectorName() const { return detector_name_; }  // "lsd" or "edlines"
   static bool lsdAvailable();
@@ -36,7 +36,7 @@ class LineExtractor {
   // LBD descriptors (N x 32 CV_8U, row i for lines[i]) at the raw segments.
   cv::Mat describe(const cv::Mat& gray, const std::vector<LineFeature>& lines) const;
 
-  const LineParams& params() const { return params_; }
+  const LineOptions& params() const { return params_; }
 
  private:
   std::vector<cv::Vec4f> detectRaw(const cv::Mat& gray) const;
@@ -44,7 +44,7 @@ class LineExtractor {
   void refineOnEdges(const cv::Mat& gray, const PinholeCamera& camera,
                      std::vector<LineFeature>& lines) const;
 
-  LineParams params_;
+  LineOptions params_;
   LineMerger merger_;
   std::string detector_name_;
 };

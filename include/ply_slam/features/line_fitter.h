@@ -4,11 +4,11 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_3d.h"
 #include "ply_slam/features/line_depth_refiner.h"
 #include "ply_slam/features/line_feature.h"
+#include "ply_slam/features/line_options.h"
 #include "ply_slam/features/registered_depth.h"
 
 namespace ply_slam {
@@ -33,7 +33,7 @@ namespace ply_slam {
 // Not thread-bound: const, no state per call.
 class LineFitter {
  public:
-  LineFitter(const LineParams& params, const PinholeCamera& camera);
+  LineFitter(const LineOptions& params, const PinholeCamera& camera);
 
   Line3D fitSampled(const LineFeature& line, const cv::Mat& depth_m, int average_length) const;
   Line3D fitEndpoints(const LineFeature& line, const cv::Mat& depth_m) const;
@@ -60,7 +60,7 @@ class LineFitter {
  private:
   bool accept(Line3D& line) const;
 
-  LineParams params_;
+  LineOptions params_;
   PinholeCamera camera_;
   RegisteredDepth depth_;
   LineDepthRefiner refiner_;

@@ -3,9 +3,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/frame_lines.h"
+#include "ply_slam/features/line_options.h"
 
 namespace ply_slam {
 
@@ -26,7 +26,7 @@ struct SegmentToMatch {
 // Matches lines between two frames, or landmarks to a frame, by LBD Hamming distance.
 class LineMatcher {
  public:
-  LineMatcher(const LineParams& params, const PinholeCamera& camera);
+  LineMatcher(const LineOptions& params, const PinholeCamera& camera);
 
   // Geometry first: each segment is moved into B's camera by the predicted pose T_bs and
   // projected (ends nearer than 5 cm: not matched); B's segments within the gates (withinGates)
@@ -62,7 +62,7 @@ class LineMatcher {
   bool bestLine(const SegmentToMatch& s, const std::vector<Observed>& observed,
                 const cv::Mat& descriptors, const Eigen::Isometry3d& T_bs, LineMatch& m) const;
 
-  LineParams params_;
+  LineOptions params_;
   PinholeCamera camera_;
   double cos_max_angle_;
 };

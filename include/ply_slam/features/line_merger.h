@@ -2,8 +2,9 @@
 
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_feature.h"
+#include "ply_slam/features/line_options.h"
 
 namespace ply_slam {
 
@@ -14,7 +15,7 @@ namespace ply_slam {
 // endpoints, where straight edges are straight; the raw endpoints follow the undistorted ones.
 class LineMerger {
  public:
-  explicit LineMerger(const LineParams& params);
+  explicit LineMerger(const LineOptions& params);
 
   // Merges until no pair qualifies; longer segments absorb shorter ones first.
   std::vector<LineFeature> merge(std::vector<LineFeature> lines) const;

@@ -4,7 +4,7 @@
 #include <opencv2/features2d.hpp>
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/features/orb_options.h"
 
 namespace ply_slam {
 
@@ -14,7 +14,7 @@ namespace ply_slam {
 // come back in level-0 pixel coordinates with octave = pyramid level.
 class OrbExtractor {
  public:
-  explicit OrbExtractor(const OrbParams& params);
+  explicit OrbExtractor(const OrbOptions& params);
 
   void extract(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints,
                cv::Mat& descriptors) const;
@@ -26,7 +26,7 @@ class OrbExtractor {
  private:
   void detectLevel(const cv::Mat& image, int level, std::vector<cv::KeyPoint>& out) const;
 
-  OrbParams params_;
+  OrbOptions params_;
   std::vector<double> scales_;  // scale of level i relative to level 0
   std::vector<int> features_per_level_;
   std::vector<cv::Ptr<cv::ORB>> descriptors_;  // per level (thread safety): rBRIEF only

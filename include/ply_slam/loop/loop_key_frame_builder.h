@@ -2,8 +2,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_extractor.h"
+#include "ply_slam/features/line_options.h"
 #include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/map/key_frame_packet.h"
 
@@ -13,12 +14,12 @@ namespace ply_slam {
 // ORB features with depth, the LBD descriptors of the lines in its image and its instances'
 // boxes. Features and lines on instances of moving classes (LoopOptions::dynamic_classes) are
 // left out: a person's features match the same person anywhere. Lines are described whether or
-// not tracking uses them (LineParams::enabled): the point-line score needs them, and once per
+// not tracking uses them (LineOptions::enabled): the point-line score needs them, and once per
 // keyframe they cost what tracking with lines costs on every frame.
 class LoopKeyFrameBuilder {
  public:
-  LoopKeyFrameBuilder(const LineParams& lines, const PinholeCamera& camera, const LoopOptions& loop,
-                      int mask_dilation_px);
+  LoopKeyFrameBuilder(const LineOptions& lines, const PinholeCamera& camera,
+                      const LoopOptions& loop, int mask_dilation_px);
 
   LoopKeyFrame build(const KeyFramePacket& packet) const;
 

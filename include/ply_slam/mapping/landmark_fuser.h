@@ -3,8 +3,10 @@
 #include <memory>
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/features/orb_options.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/mapping/local_mapping_options.h"
 
 namespace ply_slam {
 
@@ -14,7 +16,9 @@ namespace ply_slam {
 // bundle adjustment would have no landmark seen twice to work with.
 class LandmarkFuser {
  public:
-  explicit LandmarkFuser(const SystemConfig& config);
+  // `orb`: the keyframes' pyramid, to predict a landmark's level.
+  LandmarkFuser(const PinholeCamera& camera, const OrbOptions& orb,
+                const LocalMappingOptions& options);
 
   // Returns the number of observations added plus landmarks merged.
   int fuse(Map& map, KeyFrame& keyframe, const std::vector<KeyFrame*>& neighbours) const;
@@ -23,8 +27,12 @@ class LandmarkFuser {
   int fuseInto(Map& map, KeyFrame& target,
                const std::vector<std::shared_ptr<MapPoint>>& points) const;
 
-  const SystemConfig config_;
-  double log_scale_;
+  const PinholeCamera camera_;
+  const int num_levels_;
+  const double log_scale_;
+  const double chi2_outlier_;
+  const double radius_px_;  // at level 0
+  const int max_distance_;
 };
 
 }  // namespace ply_slam

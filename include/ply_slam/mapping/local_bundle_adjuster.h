@@ -3,10 +3,11 @@
 #include <atomic>
 #include <memory>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/bundle_window.h"
+#include "ply_slam/mapping/local_mapping_options.h"
 
 namespace ply_slam {
 
@@ -27,7 +28,8 @@ struct LocalBundleAdjustmentStats {
 // holds the lock throughout.
 class LocalBundleAdjuster {
  public:
-  LocalBundleAdjuster(const SystemConfig& config) : config_(config) {}
+  LocalBundleAdjuster(const PinholeCamera& camera, const LocalMappingOptions& options)
+      : camera_(camera), options_(options) {}
 
   LocalBundleAdjustmentStats adjust(Map& map, KeyFrame& keyframe) const;
 
@@ -50,7 +52,8 @@ class LocalBundleAdjuster {
   BundleWindow gather(const std::vector<KeyFrame*>& keyframes, int max_iterations) const;
   double chi2Bound(const PointResidual& residual) const;
 
-  const SystemConfig config_;
+  const PinholeCamera camera_;
+  const LocalMappingOptions options_;
 };
 
 }  // namespace ply_slam

@@ -4,11 +4,11 @@
 #include <optional>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/loop/loop_key_frame_builder.h"
 #include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/loop_corrector.h"
+#include "ply_slam/mapping/mapper_options.h"
 
 namespace ply_slam {
 
@@ -24,8 +24,9 @@ struct LoopClosureCounts {
 // instances), is queried for a loop, and an accepted loop is closed in the map.
 class LoopCloser {
  public:
-  LoopCloser(LoopDetector detector, const SystemConfig& config, const LandmarkFuser& fuser,
-             Map& map);
+  // Of `options` it reads loop, loop_correction, lines and mask_dilation_px.
+  LoopCloser(LoopDetector detector, const PinholeCamera& camera, const MapperOptions& options,
+             const LandmarkFuser& fuser, Map& map);
 
   // What the database keeps of a keyframe, from its packet alone (its lines are described
   // here: the slow part, which needs nothing of the map).

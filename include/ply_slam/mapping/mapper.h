@@ -8,7 +8,7 @@
 #include <set>
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/map/map_file_contents.h"
@@ -18,6 +18,7 @@
 #include "ply_slam/mapping/local_bundle_adjuster.h"
 #include "ply_slam/mapping/loop_closer.h"
 #include "ply_slam/mapping/map_point_culler.h"
+#include "ply_slam/mapping/mapper_options.h"
 
 namespace ply_slam {
 
@@ -60,7 +61,8 @@ class Mapper {
   // `wait_for_global_ba`: closeLoop waits for the global bundle adjustment it starts and writes
   // it back (runs repeat bit for bit); false: it is solved beside the following keyframes and
   // written back at the first of them after it ended (or by applySolvedGlobalBundleAdjustment).
-  Mapper(const SystemConfig& config, Map& map, bool wait_for_global_ba = true);
+  Mapper(const PinholeCamera& camera, const MapperOptions& options, Map& map,
+         bool wait_for_global_ba = true);
 
   void setCorrectionListener(CorrectionListener listener) { listener_ = std::move(listener); }
   // The new keyframe and the first one are always kept, and those made after the new one.
@@ -107,7 +109,7 @@ class Mapper {
   std::optional<Eigen::Isometry3d> writeBackSolvedGlobal();
   void tell(const Eigen::Isometry3d& correction) const;
 
-  const SystemConfig config_;
+  const MapperOptions options_;
   Map& map_;
   LandmarkFuser fuser_;
   LocalBundleAdjuster bundle_adjuster_;

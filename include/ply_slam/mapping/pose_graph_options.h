@@ -1,5 +1,7 @@
 #pragma once
 
+#include "ply_slam/common/solver_options.h"
+
 namespace ply_slam {
 
 // Settings of the SE(3) pose graph that corrects keyframe poses after a loop. Each value says
@@ -18,6 +20,8 @@ struct PoseGraphOptions {
   // Ceres threads for the Jacobians. 1: the mapper runs beside the tracker on a two-core
   // robot computer, and a 500-keyframe graph solves in tens of ms on one core.
   int num_threads = 1;
+  // Each pose touches only its few neighbours: the normal equations are sparse.
+  LinearSolver linear_solver = LinearSolver::kSparseNormalCholesky;
 };
 
 }  // namespace ply_slam

@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/semantic/segmenter.h"
+#include "ply_slam/semantic/yolo_options.h"
 
 namespace ply_slam {
 
@@ -21,7 +21,7 @@ struct SegmenterChoice {
   // --model or --input without --segmenter yolo would be ignored: std::invalid_argument.
   void check() const;
   // nullptr for none; masks come from `sequence_folder`.
-  std::unique_ptr<Segmenter> make(const YoloParams& config,
+  std::unique_ptr<Segmenter> make(const YoloOptions& config,
                                   const std::string& sequence_folder) const;
 };
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/semantic/segmenter.h"
+#include "ply_slam/semantic/yolo_options.h"
 
 namespace ply_slam {
 
@@ -16,14 +16,14 @@ class YoloV8Seg : public Segmenter {
  public:
   // Throws std::runtime_error naming the file and what OpenCV said when the model or the
   // class list cannot be loaded. Without a class list path, coco.names beside the model.
-  explicit YoloV8Seg(const YoloParams& params);
+  explicit YoloV8Seg(const YoloOptions& params);
 
   std::vector<Instance> segment(const RgbdImages& images) override;
   std::string name() const override { return "yolo"; }
   const std::vector<std::string>& classNames() const { return class_names_; }
 
  private:
-  YoloParams params_;
+  YoloOptions params_;
   cv::dnn::Net net_;
   std::vector<std::string> class_names_;
 };

@@ -3,7 +3,10 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "ply_slam/common/chi_square.h"
 #include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/common/solver_options.h"
+#include "ply_slam/features/line_options.h"
 
 namespace ply_slam {
 
@@ -24,20 +27,26 @@ struct LineObservation {
   double pixel_sigma = 1.0;    // px, of the observed line's position
 };
 
-// How the line term is weighted against the point term: F(n) of PAPER.md §3, with n the
-// number of point observations. kPaper reads the garbled "F(n) = 2 n 50" as 2n/50; kOne is 1.
-enum class LineBalance { kPaper, kOne };
+// F(n) of the line term (LineBalance) for n point observations.
 double lineBalanceFactor(LineBalance balance, int num_points);
 
+// Each round's solve: from a predicted or already refined pose, a few iterations suffice. A round
+// stops once an iteration changes the cost by less than 1e-3 of it: Ceres' 1e-6 only bought
+// iterations (with lines 5.5 instead of 2.2 per round, same ATE; docs/RESULTS.md, "Lines in
+// tracking"). One pose has six unknowns: dense QR.
+inline SolverOptions poseSolverDefaults() {
+  SolverOptions o;
+  o.linear_solver = LinearSolver::kDenseQr;
+  o.max_iterations = 10;
+  o.function_tolerance = 1e-3;
+  return o;
+}
+
 struct PoseOptimizerParams {
-  double chi2_pixel = 5.991;  // 2-DoF 95 %: reprojection outlier above
-  double chi2_depth = 7.815;  // 3-DoF 95 %: with the depth residual
-  int rounds = 4;             // solve, re-classify outliers, repeat
-  int max_iterations = 10;    // per round
-  // A round stops once an iteration changes the cost by less than this share: the solve
-  // starts from a predicted or already refined pose, and Ceres' 1e-6 only bought iterations
-  // (with lines 5.5 instead of 2.2 per round, same ATE; docs/RESULTS.md, "Lines in tracking").
-  double function_tolerance = 1e-3;
+  double chi2_pixel = kChiSquare95TwoDof;       // reprojection outlier above
+  double chi2_depth = kChiSquare95ThreeDof;     // with the depth residual
+  int rounds = 4;                               // solve, re-classify outliers, repeat
+  SolverOptions solver = poseSolverDefaults();  // per round
 };
 
 // Camera pose from point (and, in the second overload, line) correspondences with Ceres:

@@ -6,12 +6,15 @@
 #include <vector>
 
 #include "ply_slam/common/camera_velocity.h"
-#include "ply_slam/common/config.h"
+#include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_matcher.h"
+#include "ply_slam/features/line_options.h"
+#include "ply_slam/features/orb_options.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/tracking/frame.h"
 #include "ply_slam/tracking/pose_optimizer.h"
 #include "ply_slam/tracking/projection_matcher.h"
+#include "ply_slam/tracking/tracking_options.h"
 
 namespace ply_slam {
 
@@ -32,7 +35,10 @@ struct TrackingResult {
 // keyframe decision and relocalisation against keyframes after a loss.
 class Tracker {
  public:
-  Tracker(const SystemConfig& config, Map& map, const std::vector<double>& scales);
+  // `orb`: the frames' pyramid (scales: its scale per level); `lines`: tracking with lines
+  // (lines.enabled) and how they are matched and weighted.
+  Tracker(const PinholeCamera& camera, const TrackingOptions& tracking, const OrbOptions& orb,
+          const LineOptions& lines, Map& map, const std::vector<double>& scales);
 
   // Keyframe ids to relocalise against, most promising first (a place-recognition database).
   using PlaceCandidates = std::function<std::vector<long>(const Frame&)>;
@@ -83,13 +89,14 @@ class Tracker {
   // its depth.
   void fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const;
 
-  const SystemConfig config_;
+  const PinholeCamera camera_;
+  const TrackingOptions options_;
+  const LineOptions lines_;
   Map& map_;
   std::vector<double> scales_;
   PoseOptimizer optimizer_;
   ProjectionMatcher matcher_;
   LineMatcher line_matcher_;
-  LineBalance line_balance_;
 
   TrackingState state_ = TrackingState::kNotInitialised;
   std::unique_ptr<Frame> last_frame_;
