@@ -521,175 +521,255 @@ Json saveMap(const System& system, const std::string& folder, FileWrites& output
           {"save_ms", rounded(watch.elapsedMs())}};
 }
 
-int run(const Options& options) {
+SystemConfig runConfig(const Options& options) {
   SystemConfig config = loadConfig(options.config);
   if (options.no_lines) config.lines.enabled = false;
   if (options.no_loop) config.loop.enabled = false;
   if (!options.dynamic.empty()) config.dynamic.mode = parseDynamicMode(options.dynamic);
-  const TumSequence sequence(options.sequence);
-  fs::create_directories(options.out);
-  const fs::path out(options.out);
+  return config;
+}
 
-  // Offline, every frame is segmented before it is tracked: runs are reproducible.
-  std::unique_ptr<Segmenter> segmenter =
-      options.segmentation.make(config.segmentation, sequence.folder());
-  if (!segmenter) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
-  std::unique_ptr<LiveSegmenter> live;
-  if (options.live) live = std::make_unique<LiveSegmenter>(std::move(segmenter));
+// One run over a TUM folder: tracks every frame, then writes the trajectories, the maps and
+// summary.json. A frame that cannot be read ends the tracking, but what was tracked so far is
+// still written; every output is kept in memory or written whole (FileWrites).
+class TumRun {
+ public:
+  explicit TumRun(const Options& options);
+  int run() {
+    trackFrames();
+    finishMapping();
+    writeTrajectories();
+    Json json = summarise();
+    finishMapsAndPlot(json);
+    writeSummary(json);
+    return report();
+  }
+
+ private:
+  void trackFrames();
+  std::vector<Instance> segment(const RgbdImages& images);
+  void scoreAgainstGroundTruth(const RgbdImages& images, const std::vector<Instance>& instances,
+                               const FrameResult& r);
+  void saveImage(size_t i, const RgbdImages& images, const FrameResult& r);
+  void takeMapped(const std::vector<MappedKeyFrame>& mapped);
+  void finishMapping();
+  void writeTrajectories();
+  Json summarise();
+  void finishMapsAndPlot(Json& json);
+  void writeSummary(Json& json);
+  int report() const;
+
+  const Options& options_;
+  SystemConfig config_;
+  const TumSequence sequence_;
+  const fs::path out_;
+  std::unique_ptr<Segmenter> segmenter_;
+  std::unique_ptr<LiveSegmenter> live_;
   // Where there are ground-truth masks of the moving objects, the dynamic rejection and the
   // dense maps are scored against them.
-  const std::unique_ptr<MaskFolderSegmenter> walker_masks = groundTruthMasks(options, sequence);
+  std::unique_ptr<MaskFolderSegmenter> walker_masks_;
   // Offline with the sequence's own masks as segmenter, its instances are the ground truth:
   // no second read of every mask.
-  const bool segmenter_is_ground_truth =
-      walker_masks && !options.live && options.segmentation.kind == "masks" &&
-      (options.ground_truth_masks.empty() || options.ground_truth_masks == sequence.folder());
-  FeatureClassification classification;
-  if (options.save_images > 0) fs::create_directories(out / "images");
-  System system(config, options.realtime ? MappingMode::kOwnThread : MappingMode::kInline);
-  Json map_json = Json::object();
-  if (!options.map.empty()) map_json = loadSavedMap(system, options);
-  std::unique_ptr<DenseMappingWorker> dense;
-  if (config.dense.enabled) dense = std::make_unique<DenseMappingWorker>(config.dense);
-  FileWrites outputs;
-  // Kept in memory and written at the end like every output: whole or not at all.
-  std::ostringstream timing;
-  timing << kTimingHeader;
-  RunCounts counts;
-  const size_t n = options.max_frames >= 0
-                       ? std::min(sequence.size(), static_cast<size_t>(options.max_frames))
-                       : sequence.size();
-  // A frame that cannot be read ends the run, but what was tracked so far is still written.
-  std::string failure;
-  const auto start = std::chrono::steady_clock::now();
-  double first_stamp = -1.0;
-  std::vector<std::shared_ptr<const LoopCorrection>> corrections;
+  bool segmenter_is_ground_truth_ = false;
+  FeatureClassification classification_;
+  std::unique_ptr<System> system_;
+  Json map_json_ = Json::object();
+  std::unique_ptr<DenseMappingWorker> dense_;
+  FileWrites outputs_;
+  std::ostringstream timing_;  // kept in memory and written at the end like every output
+  RunCounts counts_;
+  std::string failure_;
+  std::chrono::steady_clock::time_point start_;
+  double first_stamp_ = -1.0;
+  std::vector<std::shared_ptr<const LoopCorrection>> corrections_;
   // The people's pixels of each keyframe's frame, until the mapping side hands its packet on.
-  std::map<long, cv::Mat> keyframe_walkers;
-  auto takeMapped = [&](const std::vector<MappedKeyFrame>& mapped) {
-    for (const MappedKeyFrame& m : mapped) {
-      counts.add(m);
-      if (m.loop_correction) corrections.push_back(m.loop_correction);
-      if (!dense) continue;
-      if (m.packet) {
-        const auto walkers = keyframe_walkers.find(m.packet->frame_id);
-        dense->push(m.packet, walkers != keyframe_walkers.end() ? walkers->second : cv::Mat());
-        if (walkers != keyframe_walkers.end()) keyframe_walkers.erase(walkers);
-      }
-      dense->follow(*m.map_update);
-    }
-  };
-  for (size_t i = 0; i < n && failure.empty(); ++i) {
+  std::map<long, cv::Mat> keyframe_walkers_;
+  Trajectory trajectory_;  // derived from the keyframes' final poses: taken once
+  Evaluation evaluation_;
+};
+
+TumRun::TumRun(const Options& options)
+    : options_(options),
+      config_(runConfig(options)),
+      sequence_(options.sequence),
+      out_(options.out) {
+  fs::create_directories(out_);
+  // Offline, every frame is segmented before it is tracked: runs are reproducible.
+  segmenter_ = options.segmentation.make(config_.segmentation, sequence_.folder());
+  if (!segmenter_) config_.dynamic.mode = modeWithoutSegmenter(config_.dynamic.mode);
+  if (options.live) live_ = std::make_unique<LiveSegmenter>(std::move(segmenter_));
+  walker_masks_ = groundTruthMasks(options, sequence_);
+  segmenter_is_ground_truth_ =
+      walker_masks_ && !options.live && options.segmentation.kind == "masks" &&
+      (options.ground_truth_masks.empty() || options.ground_truth_masks == sequence_.folder());
+  if (options.save_images > 0) fs::create_directories(out_ / "images");
+  system_ = std::make_unique<System>(
+      config_, options.realtime ? MappingMode::kOwnThread : MappingMode::kInline);
+  if (!options.map.empty()) map_json_ = loadSavedMap(*system_, options);
+  if (config_.dense.enabled) dense_ = std::make_unique<DenseMappingWorker>(config_.dense);
+  timing_ << kTimingHeader;
+}
+
+void TumRun::trackFrames() {
+  const size_t n = options_.max_frames >= 0
+                       ? std::min(sequence_.size(), static_cast<size_t>(options_.max_frames))
+                       : sequence_.size();
+  start_ = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < n; ++i) {
     FrameResult r;
-    std::vector<Instance> instances;
     RgbdImages images;
     try {
-      images = sequence.load(i, config.camera.depth_factor);
-      if (live) {
-        // A camera delivers the frame at its stamp: wait for it, never for the network.
-        if (first_stamp < 0) first_stamp = images.stamp;
-        std::this_thread::sleep_until(start +
-                                      std::chrono::duration<double>(images.stamp - first_stamp));
-        live->submit(images);
-        instances = live->instancesFor(images);
-      } else if (segmenter) {
-        Stopwatch watch;
-        instances = segmenter->segment(images);
-        counts.segment_ms.push_back(watch.elapsedMs());
-      }
-      r = system.process(images, instances);
-      const cv::Mat walkers =
-          !walker_masks ? cv::Mat()
-          : segmenter_is_ground_truth
-              ? walkerPixels(instances, images.rgb.size(), config.dynamic)
-              : walkerPixels(walker_masks->segment(images), images.rgb.size(), config.dynamic);
-      if (walker_masks) classification.add(r.features, walkers);
-      if (dense && r.tracking.new_keyframe) keyframe_walkers[r.frame_id] = walkers;
+      images = sequence_.load(i, config_.camera.depth_factor);
+      const std::vector<Instance> instances = segment(images);
+      r = system_->process(images, instances);
+      scoreAgainstGroundTruth(images, instances, r);
       takeMapped(r.mapped);
     } catch (const std::exception& e) {
-      failure = e.what();
-      break;
+      failure_ = e.what();
+      return;
     }
-    if (options.save_images > 0 && i % options.save_images == 0) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "%06ld.jpg", r.frame_id);
-      outputs.attempt([&] {
-        writeImageFile((out / "images" / name).string(),
-                       drawTrackingImage(images.rgb, r, r.instances));
-      });
-    }
-    counts.add(r);
-    writeTimingRow(timing, r, system);
+    saveImage(i, images, r);
+    counts_.add(r);
+    writeTimingRow(timing_, r, *system_);
   }
-  try {
-    takeMapped(system.finishMapping());
-  } catch (const std::exception& e) {
-    if (failure.empty()) failure = e.what();
-  }
-  outputs.attempt([&] { writeTextFileAtomically((out / "timing.csv").string(), timing.str()); });
+}
 
-  // Derived from the keyframes' final poses: taken once.
-  const Trajectory trajectory = system.cameraTrajectory();
-  outputs.attempt([&] { writeTumTrajectory((out / "CameraTrajectory.txt").string(), trajectory); });
-  outputs.attempt([&] {
-    writeTumTrajectory((out / "KeyFrameTrajectory.txt").string(), system.keyFrameTrajectory());
+std::vector<Instance> TumRun::segment(const RgbdImages& images) {
+  if (live_) {
+    // A camera delivers the frame at its stamp: wait for it, never for the network.
+    if (first_stamp_ < 0) first_stamp_ = images.stamp;
+    std::this_thread::sleep_until(start_ +
+                                  std::chrono::duration<double>(images.stamp - first_stamp_));
+    live_->submit(images);
+    return live_->instancesFor(images);
+  }
+  if (!segmenter_) return {};
+  Stopwatch watch;
+  std::vector<Instance> instances = segmenter_->segment(images);
+  counts_.segment_ms.push_back(watch.elapsedMs());
+  return instances;
+}
+
+void TumRun::scoreAgainstGroundTruth(const RgbdImages& images,
+                                     const std::vector<Instance>& instances, const FrameResult& r) {
+  if (!walker_masks_) return;
+  const cv::Size size = images.rgb.size();
+  const cv::Mat walkers = segmenter_is_ground_truth_
+                              ? walkerPixels(instances, size, config_.dynamic)
+                              : walkerPixels(walker_masks_->segment(images), size, config_.dynamic);
+  classification_.add(r.features, walkers);
+  if (dense_ && r.tracking.new_keyframe) keyframe_walkers_[r.frame_id] = walkers;
+}
+
+void TumRun::saveImage(size_t i, const RgbdImages& images, const FrameResult& r) {
+  if (options_.save_images <= 0 || i % options_.save_images != 0) return;
+  char name[32];
+  std::snprintf(name, sizeof(name), "%06ld.jpg", r.frame_id);
+  outputs_.attempt([&] {
+    writeImageFile((out_ / "images" / name).string(),
+                   drawTrackingImage(images.rgb, r, r.instances));
   });
+}
 
-  if (!options.save_map.empty()) map_json["saved"] = saveMap(system, options.save_map, outputs);
-  Json json = summaryJson(options, config, sequence, system, counts, trajectory.size());
+void TumRun::takeMapped(const std::vector<MappedKeyFrame>& mapped) {
+  for (const MappedKeyFrame& m : mapped) {
+    counts_.add(m);
+    if (m.loop_correction) corrections_.push_back(m.loop_correction);
+    if (!dense_) continue;
+    if (m.packet) {
+      const auto walkers = keyframe_walkers_.find(m.packet->frame_id);
+      dense_->push(m.packet, walkers != keyframe_walkers_.end() ? walkers->second : cv::Mat());
+      if (walkers != keyframe_walkers_.end()) keyframe_walkers_.erase(walkers);
+    }
+    dense_->follow(*m.map_update);
+  }
+}
+
+void TumRun::finishMapping() {
+  try {
+    takeMapped(system_->finishMapping());
+  } catch (const std::exception& e) {
+    if (failure_.empty()) failure_ = e.what();
+  }
+  outputs_.attempt([&] { writeTextFileAtomically((out_ / "timing.csv").string(), timing_.str()); });
+}
+
+void TumRun::writeTrajectories() {
+  trajectory_ = system_->cameraTrajectory();
+  outputs_.attempt(
+      [&] { writeTumTrajectory((out_ / "CameraTrajectory.txt").string(), trajectory_); });
+  outputs_.attempt([&] {
+    writeTumTrajectory((out_ / "KeyFrameTrajectory.txt").string(), system_->keyFrameTrajectory());
+  });
+  if (!options_.save_map.empty())
+    map_json_["saved"] = saveMap(*system_, options_.save_map, outputs_);
+}
+
+Json TumRun::summarise() {
+  Json json = summaryJson(options_, config_, sequence_, *system_, counts_, trajectory_.size());
   // In a loaded map the frames before the first tracked one are those relocalisation took.
-  if (!options.map.empty()) map_json["first_tracked_frame"] = counts.first_tracked;
-  if (!map_json.empty()) json["map"] = map_json;
-  if (live)
-    json["live"] = {{"segmented_frames", live->segmentedFrames()},
-                    {"mask_age_mean_s", rounded(live->meanAgeSeconds())}};
-  if (walker_masks) json["feature_classification"] = classificationJson(classification);
-  json["lines"] = linesJson(config, system, counts);
-  json["tracking_ms_median"] = rounded(median(counts.total_ms, 0.0));
-  json["tracking_ms_p95"] = rounded(percentile(counts.total_ms, 0.95, 0.0));
+  if (!options_.map.empty()) map_json_["first_tracked_frame"] = counts_.first_tracked;
+  if (!map_json_.empty()) json["map"] = map_json_;
+  if (live_)
+    json["live"] = {{"segmented_frames", live_->segmentedFrames()},
+                    {"mask_age_mean_s", rounded(live_->meanAgeSeconds())}};
+  if (walker_masks_) json["feature_classification"] = classificationJson(classification_);
+  json["lines"] = linesJson(config_, *system_, counts_);
+  json["tracking_ms_median"] = rounded(median(counts_.total_ms, 0.0));
+  json["tracking_ms_p95"] = rounded(percentile(counts_.total_ms, 0.95, 0.0));
   json["peak_rss_mb"] = nullptr;  // set once the dense maps and the plot are done
-  json["loops"] = loopsJson(system, corrections);
-  json["mapping"] = {{"own_thread", options.realtime},
-                     {"longest_queue", system.longestMappingQueue()}};
+  json["loops"] = loopsJson(*system_, corrections_);
+  json["mapping"] = {{"own_thread", options_.realtime},
+                     {"longest_queue", system_->longestMappingQueue()}};
+  evaluation_ = evaluate(sequence_, trajectory_);
+  json.update(evaluation_.fields);
+  return json;
+}
 
-  const Evaluation evaluation = evaluate(sequence, trajectory);
-  json.update(evaluation.fields);
+void TumRun::finishMapsAndPlot(Json& json) {
   const std::string title =
-      "ply_slam  " + fs::path(sequence.folder()).filename().string() + evaluation.title;
-  if (dense) {
+      "ply_slam  " + fs::path(sequence_.folder()).filename().string() + evaluation_.title;
+  if (dense_) {
     Json grid;
-    json["dense"] = finishDenseMaps(*dense, system, config, trajectory, out, title,
-                                    walker_masks != nullptr, outputs, grid);
+    json["dense"] = finishDenseMaps(*dense_, *system_, config_, trajectory_, out_, title,
+                                    walker_masks_ != nullptr, outputs_, grid);
     if (!grid.is_null()) json["grid"] = grid;
   }
-  if (!failure.empty()) json["error"] = failure;
-  if (!evaluation.error.empty()) json["evaluation_error"] = evaluation.error;
-  outputs.attempt([&] {
-    writeTrajectoryPlot((out / "trajectory.png").string(), sequence.groundTruth(),
-                        evaluation.aligned, title);
+  if (!failure_.empty()) json["error"] = failure_;
+  if (!evaluation_.error.empty()) json["evaluation_error"] = evaluation_.error;
+  outputs_.attempt([&] {
+    writeTrajectoryPlot((out_ / "trajectory.png").string(), sequence_.groundTruth(),
+                        evaluation_.aligned, title);
   });
-  json["peak_rss_mb"] = rounded(peakRssMb());
-  if (!outputs.failures().empty()) json["output_errors"] = outputs.failures();
-  outputs.attempt(
-      [&] { writeTextFileAtomically((out / "summary.json").string(), json.dump(2) + "\n"); });
+}
 
-  std::cout << "frames " << counts.frames << ", tracked " << trajectory.size() << ", lost "
-            << counts.lost << ", keyframes " << system.map().numKeyFrames() << ", map points "
-            << system.map().numMapPoints() << "\n"
-            << "tracking ms median " << median(counts.total_ms, 0.0) << ", p95 "
-            << percentile(counts.total_ms, 0.95, 0.0) << "\n"
-            << "outputs in " << fs::absolute(out).string() << "\n";
-  if (!failure.empty()) {
-    std::cerr << "ply_slam_tum: stopped after " << counts.frames << " frames: " << failure << "\n";
+void TumRun::writeSummary(Json& json) {
+  json["peak_rss_mb"] = rounded(peakRssMb());
+  if (!outputs_.failures().empty()) json["output_errors"] = outputs_.failures();
+  outputs_.attempt(
+      [&] { writeTextFileAtomically((out_ / "summary.json").string(), json.dump(2) + "\n"); });
+}
+
+int TumRun::report() const {
+  std::cout << "frames " << counts_.frames << ", tracked " << trajectory_.size() << ", lost "
+            << counts_.lost << ", keyframes " << system_->map().numKeyFrames() << ", map points "
+            << system_->map().numMapPoints() << "\n"
+            << "tracking ms median " << median(counts_.total_ms, 0.0) << ", p95 "
+            << percentile(counts_.total_ms, 0.95, 0.0) << "\n"
+            << "outputs in " << fs::absolute(out_).string() << "\n";
+  if (!failure_.empty()) {
+    std::cerr << "ply_slam_tum: stopped after " << counts_.frames << " frames: " << failure_
+              << "\n";
     return 1;
   }
-  if (!outputs.failures().empty()) {
-    for (const auto& failure : outputs.failures()) std::cerr << "ply_slam_tum: " << failure << "\n";
-    std::cerr << "ply_slam_tum: " << outputs.failures().size() << " output(s) not written\n";
+  if (!outputs_.failures().empty()) {
+    for (const auto& failure : outputs_.failures())
+      std::cerr << "ply_slam_tum: " << failure << "\n";
+    std::cerr << "ply_slam_tum: " << outputs_.failures().size() << " output(s) not written\n";
     return 1;
   }
-  if (!evaluation.error.empty()) {
-    std::cerr << "ply_slam_tum: warning: every output written, but " << evaluation.error << "\n";
+  if (!evaluation_.error.empty()) {
+    std::cerr << "ply_slam_tum: warning: every output written, but " << evaluation_.error << "\n";
     return kExitEvaluationFailed;
   }
   return 0;
@@ -698,5 +778,8 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return ply_slam::runTool("ply_slam_tum", kUsage, [&] { return run(parse(argc, argv)); });
+  return ply_slam::runTool("ply_slam_tum", kUsage, [&] {
+    const Options options = parse(argc, argv);
+    return TumRun(options).run();
+  });
 }
