@@ -103,64 +103,81 @@ bool projectedBounds(const std::array<Eigen::Vector3d, 4>& corners, double near,
   return *x0 <= *x1 && *y0 <= *y1;
 }
 
-}  // namespace
+// The quads of one view in the camera frame, binned into kTile x kTile pixel tiles.
+struct PreparedView {
+  const PinholeCamera& cam;
+  float near, inv_focal;
+  int tiles_x, tiles_y;
+  std::vector<PreparedQuad> quads;
+  std::vector<std::vector<int>> tiles;  // per tile, the quads whose image bounds reach it
+};
 
-RayCaster::RayCaster(const PinholeCamera& camera, double near) : camera_(camera), near_(near) {}
+PreparedQuad prepareQuad(const Scene& scene, const Quad& quad, const Eigen::Isometry3d& T_cw,
+                         const Eigen::Vector3d& centre) {
+  PreparedQuad q{};
+  const Eigen::Vector3d o = T_cw * quad.origin;
+  const Eigen::Vector3d u = T_cw.linear() * quad.axis_u;
+  const Eigen::Vector3d v = T_cw.linear() * quad.axis_v;
+  const Eigen::Vector3d n = u.cross(v);
+  q.o = o.cast<float>();
+  q.uu = (u / u.squaredNorm()).cast<float>();
+  q.vv = (v / v.squaredNorm()).cast<float>();
+  q.n = n.cast<float>();
+  q.n_dot_o = static_cast<float>(n.dot(o));
+  q.inv_n_norm = static_cast<float>(1.0 / n.norm());
+  q.len_u = static_cast<float>(quad.axis_u.norm());
+  q.len_v = static_cast<float>(quad.axis_v.norm());
+  // Two-sided: shade with the normal on the camera's side.
+  Eigen::Vector3d n_world = quad.axis_u.cross(quad.axis_v).normalized();
+  if (n_world.dot(centre - quad.origin) < 0.0) n_world = -n_world;
+  q.shade = static_cast<float>(scene.lighting().shade(n_world));
+  const SurfaceMaterial& m = quad.material;
+  q.colour = m.colour;
+  q.instance = static_cast<uint8_t>(quad.instance);
+  if (m.texture >= 0) {
+    q.texture = &scene.textures().at(m.texture);
+    q.s0 = static_cast<float>(m.texel_origin.x());
+    q.t0 = static_cast<float>(m.texel_origin.y());
+    q.ds = static_cast<float>(m.texels_per_metre.x());
+    q.dt = static_cast<float>(m.texels_per_metre.y());
+    q.lod_texels_per_metre =
+        static_cast<float>(std::sqrt(m.texels_per_metre.x() * m.texels_per_metre.y()));
+    q.repeat = m.repeat;
+  }
+  return q;
+}
 
-RenderedFrame RayCaster::render(const Scene& scene, const std::vector<Quad>& quads,
-                                const Eigen::Isometry3d& T_wc, bool antialias) const {
-  const PinholeCamera& cam = camera_;
-  const int W = cam.width, H = cam.height;
-  const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
+PreparedView prepareView(const Scene& scene, const std::vector<Quad>& quads,
+                         const Eigen::Isometry3d& T_wc, const PinholeCamera& cam, double near) {
+  const int tiles_x = (cam.width + kTile - 1) / kTile, tiles_y = (cam.height + kTile - 1) / kTile;
+  PreparedView view{cam,
+                    static_cast<float>(near),
+                    static_cast<float>(1.0 / std::sqrt(cam.fx * cam.fy)),
+                    tiles_x,
+                    tiles_y,
+                    std::vector<PreparedQuad>(quads.size()),
+                    std::vector<std::vector<int>>(tiles_x * tiles_y)};
   const Eigen::Isometry3d T_cw = T_wc.inverse();
-  const Eigen::Vector3d centre = T_wc.translation();
-  const float near = static_cast<float>(near_);
-  const float inv_focal = static_cast<float>(1.0 / std::sqrt(cam.fx * cam.fy));
-
-  // Quads in the camera frame, binned into tiles.
-  std::vector<PreparedQuad> prepared(quads.size());
-  std::vector<std::vector<int>> tiles(tiles_x * tiles_y);
   for (size_t k = 0; k < quads.size(); ++k) {
-    const Quad& quad = quads[k];
-    PreparedQuad& q = prepared[k];
-    const Eigen::Vector3d o = T_cw * quad.origin;
-    const Eigen::Vector3d u = T_cw.linear() * quad.axis_u;
-    const Eigen::Vector3d v = T_cw.linear() * quad.axis_v;
-    const Eigen::Vector3d n = u.cross(v);
-    q.o = o.cast<float>();
-    q.uu = (u / u.squaredNorm()).cast<float>();
-    q.vv = (v / v.squaredNorm()).cast<float>();
-    q.n = n.cast<float>();
-    q.n_dot_o = static_cast<float>(n.dot(o));
-    q.inv_n_norm = static_cast<float>(1.0 / n.norm());
-    q.len_u = static_cast<float>(quad.axis_u.norm());
-    q.len_v = static_cast<float>(quad.axis_v.norm());
-    // Two-sided: shade with the normal on the camera's side.
-    Eigen::Vector3d n_world = quad.axis_u.cross(quad.axis_v).normalized();
-    if (n_world.dot(centre - quad.origin) < 0.0) n_world = -n_world;
-    q.shade = static_cast<float>(scene.lighting().shade(n_world));
-    const SurfaceMaterial& m = quad.material;
-    q.colour = m.colour;
-    q.instance = static_cast<uint8_t>(quad.instance);
-    if (m.texture >= 0) {
-      q.texture = &scene.textures().at(m.texture);
-      q.s0 = static_cast<float>(m.texel_origin.x());
-      q.t0 = static_cast<float>(m.texel_origin.y());
-      q.ds = static_cast<float>(m.texels_per_metre.x());
-      q.dt = static_cast<float>(m.texels_per_metre.y());
-      q.lod_texels_per_metre =
-          static_cast<float>(std::sqrt(m.texels_per_metre.x() * m.texels_per_metre.y()));
-      q.repeat = m.repeat;
-    }
+    view.quads[k] = prepareQuad(scene, quads[k], T_cw, T_wc.translation());
     std::array<Eigen::Vector3d, 4> corners;
-    for (int c = 0; c < 4; ++c) corners[c] = T_cw * quad.corner(c);
+    for (int c = 0; c < 4; ++c) corners[c] = T_cw * quads[k].corner(c);
     int x0, x1, y0, y1;
-    if (!projectedBounds(corners, near_, cam, &x0, &x1, &y0, &y1)) continue;
+    if (!projectedBounds(corners, near, cam, &x0, &x1, &y0, &y1)) continue;
     for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
       for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx)
-        tiles[ty * tiles_x + tx].push_back(static_cast<int>(k));
+        view.tiles[ty * tiles_x + tx].push_back(static_cast<int>(k));
   }
+  return view;
+}
 
+// One ray through each pixel centre: colour, depth, instance and surface of the nearest hit.
+RenderedFrame castPrimaryRays(const PreparedView& view) {
+  const PinholeCamera& cam = view.cam;
+  const int W = cam.width, H = cam.height, tiles_x = view.tiles_x, tiles_y = view.tiles_y;
+  const float near = view.near, inv_focal = view.inv_focal;
+  const std::vector<PreparedQuad>& prepared = view.quads;
+  const std::vector<std::vector<int>>& tiles = view.tiles;
   // Ray directions with z = 1, so the ray parameter is the depth.
   std::vector<float> ray_x(W), ray_y(H);
   for (int x = 0; x < W; ++x) ray_x[x] = static_cast<float>((x - cam.cx) / cam.fx);
@@ -210,7 +227,15 @@ RenderedFrame RayCaster::render(const Scene& scene, const std::vector<Quad>& qua
     }
   });
 
-  if (!antialias) return f;
+  return f;
+}
+
+void antialiasEdges(const PreparedView& view, RenderedFrame& f) {
+  const PinholeCamera& cam = view.cam;
+  const int W = cam.width, H = cam.height, tiles_x = view.tiles_x;
+  const float near = view.near, inv_focal = view.inv_focal;
+  const std::vector<PreparedQuad>& prepared = view.quads;
+  const std::vector<std::vector<int>>& tiles = view.tiles;
   // Silhouettes and quad borders: average the colour of 4 rotated-grid sub-pixel rays so that
   // edges fall between pixels as in a camera image, not on a staircase.
   static const float kSub[4][2] = {
@@ -240,6 +265,17 @@ RenderedFrame RayCaster::render(const Scene& scene, const std::vector<Quad>& qua
       }
     }
   });
+}
+
+}  // namespace
+
+RayCaster::RayCaster(const PinholeCamera& camera, double near) : camera_(camera), near_(near) {}
+
+RenderedFrame RayCaster::render(const Scene& scene, const std::vector<Quad>& quads,
+                                const Eigen::Isometry3d& T_wc, bool antialias) const {
+  const PreparedView view = prepareView(scene, quads, T_wc, camera_, near_);
+  RenderedFrame f = castPrimaryRays(view);
+  if (antialias) antialiasEdges(view, f);
   return f;
 }
 
