@@ -64,6 +64,97 @@ void checkInputSize(const YoloOptions& params) {
                            "input_height in the config)");
 }
 
+// The anchors whose best class score reaches the threshold: box (input pixels), score, class.
+struct Detections {
+  std::vector<cv::Rect2d> boxes;
+  std::vector<float> scores;
+  std::vector<int> classes, anchor_of;
+};
+
+Detections detect(const cv::Mat& table, int num_classes, float score_threshold) {
+  Detections d;
+  for (int a = 0; a < table.cols; ++a) {
+    int best_class = 0;
+    float best = 0.f;
+    for (int c = 0; c < num_classes; ++c) {
+      const float s = table.at<float>(kBoxRows + c, a);
+      if (s > best) {
+        best = s;
+        best_class = c;
+      }
+    }
+    if (best < score_threshold) continue;
+    const float cx = table.at<float>(0, a), cy = table.at<float>(1, a);
+    const float w = table.at<float>(2, a), h = table.at<float>(3, a);
+    d.boxes.emplace_back(cx - w / 2, cy - h / 2, w, h);
+    d.scores.push_back(best);
+    d.classes.push_back(best_class);
+    d.anchor_of.push_back(a);
+  }
+  return d;
+}
+
+// Class-aware NMS: boxes of different classes never suppress each other.
+// (OpenCV 4.6 has no NMSBoxesBatched: each class is shifted far away from the others.)
+std::vector<int> keptByNms(const Detections& d, const YoloOptions& params) {
+  std::vector<cv::Rect2d> shifted = d.boxes;
+  const double shift = 4.0 * std::max(params.input_width, params.input_height);
+  for (size_t i = 0; i < shifted.size(); ++i) shifted[i].x += d.classes[i] * shift;
+  std::vector<int> keep;
+  cv::dnn::NMSBoxes(shifted, d.scores, params.score_threshold, params.nms_threshold, keep);
+  return keep;
+}
+
+// An instance's mask in the image from its 32 coefficients and the prototype masks.
+class MaskDecoder {
+ public:
+  MaskDecoder(const cv::Mat& protos, const YoloOptions& params, const Letterbox& lb,
+              const cv::Size& image_size)
+      : ph_(protos.size[2]),
+        pw_(protos.size[3]),
+        proto_matrix_(kMaskCoefficients, ph_ * pw_, CV_32F,
+                      const_cast<float*>(protos.ptr<float>())),
+        proto_scale_(static_cast<double>(pw_) / params.input_width),
+        // sigmoid(x) > t  <=>  x > log(t / (1 - t)): threshold the logits directly.
+        logit_threshold_(std::log(params.mask_threshold / (1.f - params.mask_threshold))),
+        lb_(lb),
+        image_size_(image_size) {}
+
+  // Empty when the box leaves the image or no pixel passes the threshold.
+  cv::Mat decode(const cv::Mat& table, int num_classes, int anchor, const cv::Rect2d& b) const {
+    cv::Mat coefficients(1, kMaskCoefficients, CV_32F);
+    for (int m = 0; m < kMaskCoefficients; ++m)
+      coefficients.at<float>(0, m) = table.at<float>(kBoxRows + num_classes + m, anchor);
+    const cv::Mat logits = cv::Mat(coefficients * proto_matrix_).reshape(1, ph_);
+    // The box in the image, and the same box in prototype and input coordinates.
+    const cv::Rect2d in_image((b.x - lb_.offset.x) / lb_.scale, (b.y - lb_.offset.y) / lb_.scale,
+                              b.width / lb_.scale, b.height / lb_.scale);
+    const cv::Rect image_box = cv::Rect(in_image) & cv::Rect(cv::Point(0, 0), image_size_);
+    if (image_box.area() <= 0) return cv::Mat();
+    // Sample the prototype logits straight at the box's image pixels (pixel centres):
+    // proto = (image * letterbox scale + letterbox offset) * proto_scale.
+    const double s_img = lb_.scale * proto_scale_;
+    const cv::Matx23d image_to_proto(
+        s_img, 0, (image_box.x + 0.5) * s_img + lb_.offset.x * proto_scale_ - 0.5, 0, s_img,
+        (image_box.y + 0.5) * s_img + lb_.offset.y * proto_scale_ - 0.5);
+    cv::Mat box_logits;
+    cv::warpAffine(logits, box_logits, image_to_proto, image_box.size(),
+                   cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
+    cv::Mat mask = cv::Mat::zeros(image_size_, CV_8UC1);
+    mask(image_box).setTo(255, box_logits > logit_threshold_);
+    if (cv::countNonZero(mask) == 0) return cv::Mat();
+    return mask;
+  }
+
+ private:
+  int ph_, pw_;
+  cv::Mat proto_matrix_;
+  double proto_scale_;
+  float logit_threshold_;
+  Letterbox lb_;
+  cv::Size image_size_;
+};
+
 }  // namespace
 
 YoloV8Seg::YoloV8Seg(const YoloOptions& params) : params_(params) {
@@ -111,70 +202,14 @@ std::vector<Instance> YoloV8Seg::segment(const RgbdImages& images) {
     throw std::runtime_error(params_.model_path + ": unexpected output shapes for " +
                              std::to_string(class_names_.size()) + " classes");
   const cv::Mat table(rows, anchors, CV_32F, const_cast<float*>(det.ptr<float>()));
-
-  std::vector<cv::Rect2d> boxes;
-  std::vector<float> scores;
-  std::vector<int> classes, anchor_of;
-  for (int a = 0; a < anchors; ++a) {
-    int best_class = 0;
-    float best = 0.f;
-    for (int c = 0; c < num_classes; ++c) {
-      const float s = table.at<float>(kBoxRows + c, a);
-      if (s > best) {
-        best = s;
-        best_class = c;
-      }
-    }
-    if (best < params_.score_threshold) continue;
-    const float cx = table.at<float>(0, a), cy = table.at<float>(1, a);
-    const float w = table.at<float>(2, a), h = table.at<float>(3, a);
-    boxes.emplace_back(cx - w / 2, cy - h / 2, w, h);
-    scores.push_back(best);
-    classes.push_back(best_class);
-    anchor_of.push_back(a);
-  }
-  // Class-aware NMS: boxes of different classes never suppress each other.
-  // (OpenCV 4.6 has no NMSBoxesBatched: each class is shifted far away from the others.)
-  std::vector<cv::Rect2d> shifted = boxes;
-  const double shift = 4.0 * std::max(params_.input_width, params_.input_height);
-  for (size_t i = 0; i < shifted.size(); ++i) shifted[i].x += classes[i] * shift;
-  std::vector<int> keep;
-  cv::dnn::NMSBoxes(shifted, scores, params_.score_threshold, params_.nms_threshold, keep);
-
-  const int ph = protos.size[2], pw = protos.size[3];
-  const cv::Mat proto_matrix(kMaskCoefficients, ph * pw, CV_32F,
-                             const_cast<float*>(protos.ptr<float>()));
-  const double proto_scale = static_cast<double>(pw) / params_.input_width;
+  const Detections found = detect(table, num_classes, params_.score_threshold);
+  const MaskDecoder masks(protos, params_, lb, bgr.size());
   std::vector<Instance> instances;
   int next_id = 1;
-  for (int k : keep) {
-    cv::Mat coefficients(1, kMaskCoefficients, CV_32F);
-    for (int m = 0; m < kMaskCoefficients; ++m)
-      coefficients.at<float>(0, m) = table.at<float>(kBoxRows + num_classes + m, anchor_of[k]);
-    const cv::Mat logits = cv::Mat(coefficients * proto_matrix).reshape(1, ph);
-    // sigmoid(x) > t  <=>  x > log(t / (1 - t)): threshold the logits directly.
-    const float logit_threshold = std::log(params_.mask_threshold / (1.f - params_.mask_threshold));
-
-    // The box in the image, and the same box in prototype and input coordinates.
-    const cv::Rect2d& b = boxes[k];
-    const cv::Rect2d in_image((b.x - lb.offset.x) / lb.scale, (b.y - lb.offset.y) / lb.scale,
-                              b.width / lb.scale, b.height / lb.scale);
-    const cv::Rect image_box = cv::Rect(in_image) & cv::Rect(0, 0, bgr.cols, bgr.rows);
-    if (image_box.area() <= 0) continue;
-
-    // Sample the prototype logits straight at the box's image pixels (pixel centres):
-    // proto = (image * letterbox scale + letterbox offset) * proto_scale.
-    const double s_img = lb.scale * proto_scale;
-    const cv::Matx23d image_to_proto(
-        s_img, 0, (image_box.x + 0.5) * s_img + lb.offset.x * proto_scale - 0.5, 0, s_img,
-        (image_box.y + 0.5) * s_img + lb.offset.y * proto_scale - 0.5);
-    cv::Mat box_logits;
-    cv::warpAffine(logits, box_logits, image_to_proto, image_box.size(),
-                   cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
-    cv::Mat mask = cv::Mat::zeros(bgr.size(), CV_8UC1);
-    mask(image_box).setTo(255, box_logits > logit_threshold);
-    if (cv::countNonZero(mask) == 0) continue;
-    instances.push_back({next_id++, class_names_[classes[k]], scores[k], mask});
+  for (int k : keptByNms(found, params_)) {
+    const cv::Mat mask = masks.decode(table, num_classes, found.anchor_of[k], found.boxes[k]);
+    if (mask.empty()) continue;
+    instances.push_back({next_id++, class_names_[found.classes[k]], found.scores[k], mask});
   }
   return instances;
 }
