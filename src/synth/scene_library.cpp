@@ -213,6 +213,9 @@ void addWalkers(Assembler& a, int count, const std::vector<Walker::Path>& loops)
   }
 }
 
+// Long on purpose: the office is a list of the things in it and where they stand, read top to
+// bottom like a floor plan (walls, far wall, left wall, right wall, desk, back wall, people,
+// camera); split into functions it would only scatter the coordinates.
 SceneSetup office(const std::string& dir, int walkers, bool textured) {
   SceneSetup setup{Scene(textured ? "office" : "lowtexture"), CameraPathSpec()};
   Assembler a(setup.scene, dir);
