@@ -150,6 +150,25 @@ TEST(EraseKeyFrame, AChildSharingNothingGoesToTheGrandparent) {
   expectConsistent(h.map_);
 }
 
+// A map read from a file is the only owner of its keyframes: erasing one must not write to it
+// after the container let go of it (AddressSanitizer caught that in a loaded-map run).
+TEST(EraseKeyFrame, HandsBackAKeyFrameTheMapOwnedAlone) {
+  HandMap h(4);
+  h.addChain(3);
+  h.see(0, 0, 4);
+  h.see(1, 0, 4);
+  h.see(2, 0, 4);
+  KeyFrame& middle = *h.keyframes_[1];
+  h.keyframes_[1].reset();  // the map's reference is the last one now
+  const std::shared_ptr<KeyFrame> erased = h.map_.eraseKeyFrame(middle, 1);
+  ASSERT_NE(erased, nullptr);
+  EXPECT_EQ(erased.get(), &middle);
+  EXPECT_EQ(erased.use_count(), 1);
+  EXPECT_TRUE(erased->bad);
+  EXPECT_EQ(erased->parent, nullptr);
+  EXPECT_EQ(h.map_.numKeyFrames(), 2u);
+}
+
 TEST(EraseKeyFrame, RefusesTheFirstKeyFrameAndStrangers) {
   HandMap h(2);
   h.addChain(2);

@@ -122,17 +122,18 @@ void Map::erasePointLocked(MapPoint& point) {
   point.bad = true;
 }
 
-bool Map::eraseKeyFrame(KeyFrame& keyframe, int min_point_observers) {
+std::shared_ptr<KeyFrame> Map::eraseKeyFrame(KeyFrame& keyframe, int min_point_observers) {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto it = std::find_if(keyframes_.begin(), keyframes_.end(),
                                [&](const auto& kf) { return kf.get() == &keyframe; });
-  if (it == keyframes_.end() || it == keyframes_.begin() || !keyframe.parent) return false;
+  if (it == keyframes_.end() || it == keyframes_.begin() || !keyframe.parent) return nullptr;
   unlinkLandmarksLocked(keyframe, min_point_observers);
   reparentChildrenLocked(keyframe);
+  std::shared_ptr<KeyFrame> erased = *it;  // may be the last reference: keep it past erase
   keyframes_.erase(it);
-  keyframe.parent = nullptr;
-  keyframe.bad = true;
-  return true;
+  erased->parent = nullptr;
+  erased->bad = true;
+  return erased;
 }
 
 void Map::unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers) {

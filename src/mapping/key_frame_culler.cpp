@@ -9,7 +9,8 @@ std::vector<long> KeyFrameCuller::cull(Map& map, const KeyFrame& newest,
     // Keyframes newer than `newest` are still waiting for the mapping side (it runs behind the
     // tracker on its own thread): they are judged after their own turn.
     if (kf->id >= newest.id || keep.count(kf->id) || !redundant(*kf)) continue;
-    if (map.eraseKeyFrame(*kf, options_.min_point_observers)) erased.push_back(kf->id);
+    if (const auto gone = map.eraseKeyFrame(*kf, options_.min_point_observers))
+      erased.push_back(gone->id);
   }
   return erased;
 }

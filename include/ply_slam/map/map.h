@@ -44,9 +44,10 @@ class Map {
   // its covisibility links both ways, hands its spanning-tree children to new parents (see
   // reparentChildren), takes it out of the container and marks it bad; it keeps its features
   // for whoever still holds it. Points left with fewer than `min_point_observers` keyframes and
-  // lines left with none turn bad. Returns false, changing nothing, for the tree's root (the
-  // first keyframe) or a keyframe not in the map.
-  bool eraseKeyFrame(KeyFrame& keyframe, int min_point_observers);
+  // lines left with none turn bad. Returns the erased keyframe (the map may have held the last
+  // reference: `keyframe` lives as long as what is returned), or nullptr, changing nothing, for
+  // the tree's root (the first keyframe) or a keyframe not in the map.
+  std::shared_ptr<KeyFrame> eraseKeyFrame(KeyFrame& keyframe, int min_point_observers);
 
   // Takes a map read from a file (MapFileReader) as it is: ids, links, covisibility and spanning
   // tree kept; the first keyframe is the tree's root. Later ids continue after the largest.
