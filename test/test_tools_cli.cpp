@@ -210,8 +210,21 @@ double runForPeakRssMb(const std::vector<std::string>& arguments, const fs::path
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? usage.ru_maxrss / 1024.0 : -1.0;
 }
 
+// gcc says __SANITIZE_ADDRESS__, clang __has_feature(address_sanitizer).
+#if defined(__SANITIZE_ADDRESS__)
+#define PLY_SLAM_UNDER_ASAN
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PLY_SLAM_UNDER_ASAN
+#endif
+#endif
+
 // peak_rss_mb was taken before the dense maps were finished: 186 MiB reported, 214 MiB used.
 TEST(ToolsCommandLine, PeakRssIsTheWholeRunsHighWaterMark) {
+#ifdef PLY_SLAM_UNDER_ASAN
+  GTEST_SKIP() << "AddressSanitizer's leak check at exit raises the high-water mark after the tool "
+                  "has reported it (718 vs 816 MiB measured)";
+#endif
   const std::string sequence = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
   PLY_SLAM_REQUIRE_SHARED(sequence);
   TempDir dir;
