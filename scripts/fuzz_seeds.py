@@ -18,7 +18,7 @@ import numpy as np
 import yaml
 from geometry_msgs.msg import Pose, PoseStamped
 from ply_slam.msg import (CameraMsg, InstanceMsg, KeyFrameMsg, KeyFramePoseMsg, KeypointMsg,
-                          LandmarkMergeMsg, LandmarkMsg, Line3DMsg, MapSnapshotMsg, MapUpdateMsg)
+                          LandmarkMsg, Line3DMsg, MapSnapshotMsg, MapUpdateMsg)
 from sensor_msgs.msg import CameraInfo, Image
 
 HEAD_LINES = 12  # per list file: enough for every format, small enough to mutate fast
@@ -143,7 +143,7 @@ def sequence_seeds(folder, config, out):
     update.keyframes = [KeyFramePoseMsg(id=i, T_wc=pose(v)) for i, v in enumerate(poses[:4])]
     update.points = k0.points
     update.lines = k0.lines
-    update.merged_points = [LandmarkMergeMsg(from_id=3, to_id=1)]
+    update.erased_points = [3]
     update.erased_keyframes = [2]
     write(out, "fuzz_map_update_msg", name, serialize(update))
 

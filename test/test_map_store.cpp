@@ -62,7 +62,7 @@ TEST(MapStore, AppliesUpdates) {
   moved.translation() = Eigen::Vector3d(0, 5, 0);
   update.keyframes = {{1, moved}, {99, moved}};  // 99 is unknown: ignored
   update.points = {{11, {3, 3, 3}}};
-  update.merged_points = {{10, 11}};
+  update.erased_points = {10};  // merged into 11
   store.insert(packet(2, 3.0, 2.0));
   update.erased_keyframes = {2, 98};  // 98 is unknown: ignored
   store.apply(update);

@@ -40,7 +40,6 @@ void MapStore::apply(const MapUpdate& update) {
   }
   for (const auto& p : update.points) points_[p.id] = p;
   for (const auto& l : update.lines) lines_[l.id] = l;
-  for (const auto& m : update.merged_points) points_.erase(m.from);
   for (long id : update.erased_points) points_.erase(id);
   for (long id : update.erased_keyframes) keyframes_.erase(id);
 }

@@ -70,15 +70,6 @@ PacketInstance fromMsg(const InstanceMsg& m) {
   return {m.id, m.class_name, m.score, static_cast<bool>(m.dynamic)};
 }
 
-LandmarkMergeMsg toMsg(const MapUpdate::Merge& merge) {
-  LandmarkMergeMsg m;
-  m.from_id = merge.from;
-  m.to_id = merge.to;
-  return m;
-}
-
-MapUpdate::Merge fromMsg(const LandmarkMergeMsg& m) { return {m.from_id, m.to_id}; }
-
 CameraMsg toMsg(const PinholeCamera& c) {
   CameraMsg m;
   m.fx = c.fx;
@@ -308,7 +299,6 @@ MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
   m.keyframes = toMsgs<KeyFramePoseMsg>(u.keyframes);
   m.points = toMsgs<LandmarkMsg>(u.points);
   m.lines = toMsgs<Line3DMsg>(u.lines);
-  m.merged_points = toMsgs<LandmarkMergeMsg>(u.merged_points);
   m.erased_keyframes.assign(u.erased_keyframes.begin(), u.erased_keyframes.end());
   m.erased_points.assign(u.erased_points.begin(), u.erased_points.end());
   m.whole_map = u.whole_map;
@@ -321,7 +311,6 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.keyframes = fromMsgs<MapUpdate::KeyFramePose>(m.keyframes);
   u.points = fromMsgs<LandmarkPoint>(m.points);
   u.lines = fromMsgs<LandmarkLine>(m.lines);
-  u.merged_points = fromMsgs<MapUpdate::Merge>(m.merged_points);
   u.erased_keyframes.assign(m.erased_keyframes.begin(), m.erased_keyframes.end());
   u.erased_points.assign(m.erased_points.begin(), m.erased_points.end());
   u.whole_map = m.whole_map;

@@ -201,7 +201,6 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   u.keyframes = {{1, somePose(0.1)}, {4, somePose(-2.0)}};
   u.points = {{11, {0.1, 0.2, 0.3}}};
   u.lines = {{5, {1, 1, 1}, {2, 2, 2}}};
-  u.merged_points = {{11, 12}, {13, 14}};
   u.erased_keyframes = {2, 3};
   u.erased_points = {7, 8, 9};
   u.whole_map = true;
@@ -214,9 +213,6 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   EXPECT_EQ(v.points[0].position, u.points[0].position);
   ASSERT_EQ(v.lines.size(), 1u);
   EXPECT_EQ(v.lines[0].start, u.lines[0].start);
-  ASSERT_EQ(v.merged_points.size(), 2u);
-  EXPECT_EQ(v.merged_points[1].from, 13);
-  EXPECT_EQ(v.merged_points[1].to, 14);
   EXPECT_EQ(v.erased_keyframes, (std::vector<long>{2, 3}));
   EXPECT_EQ(v.erased_points, (std::vector<long>{7, 8, 9}));
   EXPECT_TRUE(v.whole_map);

@@ -63,15 +63,10 @@ struct MapUpdate {
     long id = 0;
     Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
   };
-  struct Merge {
-    long from = 0;  // landmark id replaced by
-    long to = 0;
-  };
   double stamp = 0.0;  // of the newest keyframe it accounts for
   std::vector<KeyFramePose> keyframes;
   std::vector<LandmarkPoint> points;
   std::vector<LandmarkLine> lines;
-  std::vector<Merge> merged_points;
   std::vector<long> erased_keyframes;  // culled as redundant
   bool whole_map = false;              // every keyframe and landmark (after a loop closure)
   // Point landmarks that left the map since the last update (culled, merged, dropped by BA):
