@@ -77,15 +77,15 @@ done
 
 /usr/bin/python3 - "$OUT" "$PLY_SLAM_ROOT" "$COMMAND" <<'PY'
 import csv, json, os, subprocess, sys, time
+import numpy
 
 out, root, command = sys.argv[1], sys.argv[2], sys.argv[3]
 names = [n for n in ("xyz", "rpy", "bonn", "walkers", "ring")
          if all(os.path.exists(f"{out}/{n}_{m}/wall_ms") for m in ("inline", "thread"))]
 
 
-def percentile(values, q):  # nearest rank, as ply_slam_tum's summary
-    values = sorted(values)
-    return values[min(len(values) - 1, int(q * len(values)))] if values else float("nan")
+def percentile(values, q):  # linear between ranks (numpy's default), as common/statistics.h
+    return float(numpy.percentile(values, 100 * q)) if values else float("nan")
 
 
 def load(name, mode):

@@ -46,7 +46,7 @@ Outcome runOffice(int walkers, const std::string& mode, bool labels, bool lines 
     const FrameResult r = system.process(images, instances);
     outcome.lost += r.tracking.state != TrackingState::kOk;
     outcome.dynamic_lines += static_cast<long>(r.dynamic_lines);
-    const cv::Mat walker_pixels = f.instance != 0 & f.instance < Scene::kFirstObjectInstance;
+    const cv::Mat walker_pixels = (f.instance != 0) & (f.instance < Scene::kFirstObjectInstance);
     outcome.classification.add(r.features, walker_pixels);
   }
   const auto& c = outcome.classification;

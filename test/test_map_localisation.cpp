@@ -53,7 +53,9 @@ LoadedRun runInLoadedMap(const TumSequence& sequence, const std::string& map_fol
       run.first_method = r.tracking.method;
     }
     // Lost until relocalised: never a new map started where the camera happens to be.
-    if (run.first_tracked < 0) EXPECT_EQ(r.tracking.state, TrackingState::kLost) << "frame " << i;
+    if (run.first_tracked < 0) {
+      EXPECT_EQ(r.tracking.state, TrackingState::kLost) << "frame " << i;
+    }
     if (r.tracking.new_keyframe && run.min_new_keyframe_id < 0)
       run.min_new_keyframe_id = r.tracking.new_keyframe->id;
     run.tracked += ok;

@@ -393,7 +393,7 @@ TEST(SyntheticSequence, NoWalkersOnlyObjectsMasked) {
   for (const auto& entry : fs::directory_iterator(dir / "masks")) {
     const cv::Mat mask = cv::imread(entry.path().string(), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(mask.type(), CV_8UC1);
-    EXPECT_EQ(cv::countNonZero(mask != 0 & mask < Scene::kFirstObjectInstance), 0);
+    EXPECT_EQ(cv::countNonZero((mask != 0) & (mask < Scene::kFirstObjectInstance)), 0);
     EXPECT_GT(cv::countNonZero(mask), 0);  // the desk is in view
     ++files;
   }

@@ -68,7 +68,7 @@ TEST(ToolsCommandLine, EveryToolPrintsItsUsageForHelp) {
 TEST(ToolsCommandLine, EveryToolNamesAnUnknownOption) {
   TempDir dir;
   for (const auto& tool : kTools)
-    for (const std::string& option : {"--bogus", "--no-line"}) {
+    for (const std::string option : {"--bogus", "--no-line"}) {
       const std::string arguments = tool == "ply_slam_eval" ? "ate " + option : option;
       const Result r = run(dir, tool, arguments);
       EXPECT_NE(r.exit_code, 0) << tool;
@@ -174,7 +174,9 @@ TEST(ToolsCommandLine, AnOutputThatCannotBeWrittenIsNamedAndFailsTheRun) {
                        tumArguments(test::sharedPath(kSequence), "out") + " --max-frames 8");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_TRUE(contains(r.err, "out/summary.json")) << r.err;
-  if (fs::exists("/dev/full")) EXPECT_TRUE(contains(r.err, "out/timing.csv")) << r.err;
+  if (fs::exists("/dev/full")) {
+    EXPECT_TRUE(contains(r.err, "out/timing.csv")) << r.err;
+  }
   EXPECT_TRUE(fs::exists(dir.path() / "out" / "CameraTrajectory.txt"));
 }
 

@@ -132,7 +132,7 @@ void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
   last_paired_rgb_stamp_ = std::max(last_paired_rgb_stamp_, rgb->header.stamp);
   last_paired_depth_stamp_ = std::max(last_paired_depth_stamp_, depth->header.stamp);
   ++synchronised_;
-  enqueue({rgb, depth});
+  enqueue({rgb, depth, nullptr});
 }
 
 void TrackingNode::reportUnpaired(const std::string& what, double stamp) {
@@ -174,7 +174,7 @@ void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
 bool TrackingNode::onResendMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.push_front({nullptr, nullptr});
+    queue_.push_front({nullptr, nullptr, nullptr});
   }
   queue_cv_.notify_one();
   response.success = true;

@@ -30,7 +30,7 @@ class SemanticOctree {
     Eigen::Vector3d centre;
     // Where in the voxel the surface lies: the mean of the points that ended in it (the centre
     // when none did). A 5 cm voxel's centre is up to 4.3 cm off the surface.
-    Eigen::Vector3d surface;
+    Eigen::Vector3d surface = Eigen::Vector3d::Zero();
     double size = 0.0;                             // m, edge
     std::uint32_t label = ClassPalette::kUnknown;  // majority class of its hits
     ClassColour colour;

@@ -62,7 +62,7 @@ struct LoopOptions {
   // paper sweeps 0.1..0.8; 0.3 is DBoW2's usual normalised-score threshold.
   double min_normalised_score = 0.3;
   // A candidate is accepted once its group was consistent over this many consecutive queries
-  // (paper: 3 consecutive keyframes). The first query counts as 1.
+  // (PAPER.md gives no rule; 3 is what DBoW2 and ORB-SLAM use). The first query counts as 1.
   int consistency = 3;
 
   // --- Geometric check -------------------------------------------------------------------
