@@ -538,7 +538,7 @@ class TumRun {
   int run() {
     trackFrames();
     finishMapping();
-    writeTrajectories();
+    writeTrackingOutputs();
     Json json = summarise();
     finishMapsAndPlot(json);
     writeSummary(json);
@@ -553,7 +553,8 @@ class TumRun {
   void saveImage(size_t i, const RgbdImages& images, const FrameResult& r);
   void takeMapped(const std::vector<MappedKeyFrame>& mapped);
   void finishMapping();
-  void writeTrajectories();
+  // timing.csv, the trajectories and, with --save-map, the map.
+  void writeTrackingOutputs();
   Json summarise();
   void finishMapsAndPlot(Json& json);
   void writeSummary(Json& json);
@@ -691,10 +692,10 @@ void TumRun::finishMapping() {
   } catch (const std::exception& e) {
     if (failure_.empty()) failure_ = e.what();
   }
-  outputs_.attempt([&] { writeTextFileAtomically((out_ / "timing.csv").string(), timing_.str()); });
 }
 
-void TumRun::writeTrajectories() {
+void TumRun::writeTrackingOutputs() {
+  outputs_.attempt([&] { writeTextFileAtomically((out_ / "timing.csv").string(), timing_.str()); });
   trajectory_ = system_->cameraTrajectory();
   outputs_.attempt(
       [&] { writeTumTrajectory((out_ / "CameraTrajectory.txt").string(), trajectory_); });
