@@ -2,6 +2,7 @@
 
 #include "ply_slam/common/hamming.h"
 #include "ply_slam/features/best_two.h"
+#include "ply_slam/features/line_distance.h"
 
 #include <algorithm>
 #include <climits>
@@ -58,8 +59,8 @@ bool LineMatcher::pairPasses(const Projected& p, const Observed& o) const {
   if (o.length < 1.0) return false;
   // Directed: both lines are oriented by polarity, which a rigid motion keeps.
   if (p.d.dot(o.d) < cos_max_angle_) return false;
-  if (std::abs(o.l.dot(p.ps.homogeneous())) > params_.match_distance_px ||
-      std::abs(o.l.dot(p.pe.homogeneous())) > params_.match_distance_px)
+  if (std::abs(lineDistance(o.l, p.ps)) > params_.match_distance_px ||
+      std::abs(lineDistance(o.l, p.pe)) > params_.match_distance_px)
     return false;
   // The two must overlap along the line: endpoints may move (occlusion, detection), but a
   // segment beside the projected one is another edge on the same line.

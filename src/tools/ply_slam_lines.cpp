@@ -31,6 +31,7 @@
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/features/frame_lines.h"
+#include "ply_slam/features/line_distance.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/line_matcher.h"
@@ -204,8 +205,8 @@ void scorePair(const Frame& a, const Frame& b, const Eigen::Isometry3d& T_ba,
       const Eigen::Vector3d Ps = T_ba * line.start, Pe = T_ba * line.end;
       if (Ps.z() <= 0.0 || Pe.z() <= 0.0) continue;
       ++method->accepted_matched;
-      method->distances_px.push_back(std::abs(l.dot(camera.project(Ps).homogeneous())));
-      method->distances_px.push_back(std::abs(l.dot(camera.project(Pe).homogeneous())));
+      method->distances_px.push_back(std::abs(lineDistance(l, camera.project(Ps))));
+      method->distances_px.push_back(std::abs(lineDistance(l, camera.project(Pe))));
     }
   }
 }
