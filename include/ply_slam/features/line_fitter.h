@@ -45,8 +45,9 @@ class LineFitter {
 
   // Σ = J Λ Jᵀ of the point back-projected from undistorted pixel uv with depth z.
   Eigen::Matrix3d sampleCovariance(const Eigen::Vector2d& uv, double z) const;
-  // Squared Mahalanobis distance of p (covariance cov) to the line through a with direction d.
-  static double mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& cov,
+  // Squared Mahalanobis distance of p to the line through a with direction d, given p's
+  // information matrix info = Σ⁻¹ (the RANSAC and refit inlier test of fitPoints).
+  static double mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& info,
                                   const Eigen::Vector3d& a, const Eigen::Vector3d& d);
   // L_avg = ceil(mean 2D length) of a frame's segments.
   static int averageLength(const std::vector<LineFeature>& lines);
