@@ -9,7 +9,11 @@
 namespace ply_slam {
 
 LineFitter::LineFitter(const LineOptions& params, const PinholeCamera& camera)
-    : params_(params), camera_(camera), depth_(camera), refiner_(params, camera) {}
+    : params_(params),
+      camera_(camera),
+      noise_(camera, params.sigma_px),
+      depth_(camera),
+      refiner_(params, camera) {}
 
 constexpr double kSidePx = 2.0;  // where the two sides of a line are read
 
@@ -35,14 +39,7 @@ double LineFitter::depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
 }
 
 Eigen::Matrix3d LineFitter::sampleCovariance(const Eigen::Vector2d& uv, double z) const {
-  const Eigen::Vector3d p = camera_.backProject(uv, z);
-  Eigen::Matrix3d J;
-  J << z / camera_.fx, 0.0, p.x() / z,  //
-      0.0, z / camera_.fy, p.y() / z,   //
-      0.0, 0.0, 1.0;
-  const double s2 = params_.sigma_px * params_.sigma_px;
-  const Eigen::Vector3d lambda(s2, s2, camera_.depth_noise.variance(z));
-  return J * lambda.asDiagonal() * J.transpose();
+  return noise_.covariance(camera_.backProject(uv, z));
 }
 
 double LineFitter::mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& info,

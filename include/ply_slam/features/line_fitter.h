@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "ply_slam/common/measured_point_noise.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_3d.h"
 #include "ply_slam/features/line_depth_refiner.h"
@@ -43,7 +44,8 @@ class LineFitter {
   Line3D fitPoints(const std::vector<Eigen::Vector3d>& points,
                    const std::vector<Eigen::Matrix3d>& covariances, int num_samples) const;
 
-  // Σ = J Λ Jᵀ of the point back-projected from undistorted pixel uv with depth z.
+  // Σ = J Λ Jᵀ of the point back-projected from undistorted pixel uv with depth z
+  // (MeasuredPointNoise with lines.sigma_px).
   Eigen::Matrix3d sampleCovariance(const Eigen::Vector2d& uv, double z) const;
   // Squared Mahalanobis distance of p to the line through a with direction d, given p's
   // information matrix info = Σ⁻¹ (the RANSAC and refit inlier test of fitPoints).
@@ -63,6 +65,7 @@ class LineFitter {
 
   LineOptions params_;
   PinholeCamera camera_;
+  MeasuredPointNoise noise_;  // of the samples, with lines.sigma_px
   RegisteredDepth depth_;
   LineDepthRefiner refiner_;
 };
