@@ -107,10 +107,11 @@ LoopQueryScores LoopDetector::score(long query_id) const {
   out.query_id = query_id;
   out.reference_id = bestEarlierCovisible(query);
   if (out.reference_id) {
+    // The database holds both at unit norm: scored as it scores the candidates.
     const KeyFrameWords* ref = database_.find(*out.reference_id);
     out.reference =
-        pairScores(query, entry(*out.reference_id), bowScore(words->points, ref->points),
-                   bowScore(words->lines, ref->lines), nullptr);
+        pairScores(query, entry(*out.reference_id), unitBowScore(words->points, ref->points),
+                   unitBowScore(words->lines, ref->lines), nullptr);
   }
   // Later keyframes, the query itself, recent ones and covisible ones are never candidates.
   const auto exclude = [&](long id) {
