@@ -26,7 +26,6 @@
 
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
-#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/pose_interpolation.h"
@@ -52,9 +51,7 @@ const char* const kUsage =
     "usage: ply_slam_lines --sequence DIR --config FILE [--max-frames N] [--offset K] [--json]\n";
 
 long parsePositive(const std::string& option, const std::string& text) {
-  const std::optional<long> value = parseWholeNumber(text, 1, 1000000000L);
-  if (!value) throw UsageError(option + " needs a whole number >= 1, got '" + text + "'");
-  return *value;
+  return wholeNumberArgument(option, text, 1, 1000000000L, "a whole number >= 1");
 }
 
 Options parse(int argc, char** argv) {

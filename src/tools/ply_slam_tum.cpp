@@ -21,7 +21,6 @@
 
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
-#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
@@ -101,9 +100,7 @@ const char* const kUsage =
 constexpr int kExitEvaluationFailed = 3;
 
 long parseCount(const std::string& option, const std::string& text) {
-  const std::optional<long> value = parseWholeNumber(text, 0, 1000000000L);
-  if (!value) throw UsageError(option + " needs a whole number >= 0, got '" + text + "'");
-  return *value;
+  return wholeNumberArgument(option, text, 0, 1000000000L, "a whole number >= 0");
 }
 
 void setOption(Options& o, const std::string& arg, const std::string& value) {
