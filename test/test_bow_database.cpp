@@ -82,6 +82,12 @@ TEST_F(BowDatabaseTest, ScoresAreTheL1Scores) {
     ASSERT_NE(stored, nullptr);
     EXPECT_NEAR(c.point_score, bowScore(query.points, stored->points), 1e-12);
     EXPECT_NEAR(c.line_score, bowScore(query.lines, stored->lines), 1e-12);
+    // To the bit: the database's sum is unitBowScore's, term by term.
+    BowVector points = query.points, lines = query.lines;
+    normaliseL1(points);
+    normaliseL1(lines);
+    EXPECT_EQ(c.point_score, unitBowScore(points, stored->points));
+    EXPECT_EQ(c.line_score, unitBowScore(lines, stored->lines));
   }
 }
 

@@ -335,12 +335,13 @@ TEST(LineFitter, CovarianceIsJLambdaJtOfTheSample) {
 TEST(LineFitter, MahalanobisDistanceToALine) {
   // Isotropic covariance: the squared Euclidean distance over the variance.
   const Eigen::Matrix3d cov = 0.01 * Eigen::Matrix3d::Identity();
-  EXPECT_NEAR(LineFitter::mahalanobisToLine({1.0, 0.3, 5.0}, cov, {0, 0, 5}, {2, 0, 0}), 9.0,
-              1e-12);
+  EXPECT_NEAR(LineFitter::mahalanobisToLine({1.0, 0.3, 5.0}, cov.inverse(), {0, 0, 5}, {2, 0, 0}),
+              9.0, 1e-12);
   // Anisotropic: an offset along the noisy axis costs less.
   Eigen::Matrix3d aniso = Eigen::Vector3d(1e-4, 1e-4, 1e-2).asDiagonal();
-  EXPECT_NEAR(LineFitter::mahalanobisToLine({0, 0, 0.1}, aniso, {0, 0, 0}, {1, 0, 0}), 1.0, 1e-12);
-  EXPECT_NEAR(LineFitter::mahalanobisToLine({0, 0.1, 0}, aniso, {0, 0, 0}, {1, 0, 0}), 100.0, 1e-9);
+  const Eigen::Matrix3d info = aniso.inverse();
+  EXPECT_NEAR(LineFitter::mahalanobisToLine({0, 0, 0.1}, info, {0, 0, 0}, {1, 0, 0}), 1.0, 1e-12);
+  EXPECT_NEAR(LineFitter::mahalanobisToLine({0, 0.1, 0}, info, {0, 0, 0}, {1, 0, 0}), 100.0, 1e-9);
 }
 
 TEST(LineFitter, SampledFitRecoversTheDrawnEdgesOnATiltedPlane) {

@@ -1,10 +1,11 @@
-// PinholeCamera and DepthNoiseModel: projection round trips, hand-computed values and the
-// exact image borders, so that a swapped fx/fy, cx/cy or an off-by-one border fails.
+// PinholeCamera, DepthNoiseModel and MeasuredPointNoise: projection round trips, hand-computed
+// values and the exact image borders, so that a swapped fx/fy, cx/cy or an off-by-one border fails.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <opencv2/core.hpp>
 
+#include "ply_slam/common/measured_point_noise.h"
 #include "ply_slam/common/pinhole_camera.h"
 
 namespace ply_slam {
@@ -139,6 +140,20 @@ TEST(PinholeCamera, HasDistortion) {
   EXPECT_TRUE(camera.hasDistortion());
   camera.distortion = (cv::Mat_<double>(1, 4) << 0.0, 0.0, 0.0, -0.01);
   EXPECT_TRUE(camera.hasDistortion());
+}
+
+// The variance along a direction, written out for speed, is the covariance's dᵀ Σ d.
+TEST(MeasuredPointNoise, VarianceAlongIsTheCovarianceProjected) {
+  const PinholeCamera camera = makeFr1Camera();
+  const MeasuredPointNoise noise(camera, 1.5);
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0.3, -0.2, 1.2), Eigen::Vector3d(-1.0, 0.8, 4.5)})
+    for (const Eigen::Vector3d& d :
+         {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, -2, 0.5)}) {
+      const Eigen::Vector3d u = d.normalized();
+      const double expected = u.dot(noise.covariance(p) * u);
+      EXPECT_NEAR(noise.varianceAlong(p, u), expected, 1e-12 * expected) << p.transpose();
+    }
 }
 
 }  // namespace

@@ -3,6 +3,9 @@
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <optional>
+
+#include "ply_slam/common/number_text.h"
 
 namespace ply_slam {
 
@@ -24,6 +27,17 @@ void CommandLine::parse(int argc, char** argv) const {
       throw UsageError("unknown option " + arg + (unknown_hint ? unknown_hint() : ""));
     }
   }
+}
+
+long wholeNumberArgument(const std::string& option, const std::string& text, long min, long max,
+                         const std::string& requirement) {
+  const std::optional<long> value = parseWholeNumber(text, min, max);
+  if (value) return *value;
+  throw UsageError(option + " needs " +
+                   (requirement.empty() ? "a whole number in [" + std::to_string(min) + ", " +
+                                              std::to_string(max) + "]"
+                                        : requirement) +
+                   ", got '" + text + "'");
 }
 
 int runTool(const std::string& tool, const std::string& usage_text,

@@ -13,16 +13,6 @@
 
 namespace ply_slam {
 
-double DelaunayConsistency::varianceAlong(const Eigen::Vector3d& p,
-                                          const Eigen::Vector3d& d) const {
-  const double z = p.z();
-  // P = (x_n Z, y_n Z, Z): dP/dZ = P / Z; dP/du = (Z / fx, 0, 0); dP/dv = (0, Z / fy, 0).
-  const double along_ray = d.dot(p / z);
-  const double px = params_.pixel_sigma * z;
-  return along_ray * along_ray * camera_.depth_noise.variance(z) +
-         std::pow(d.x() * px / camera_.fx, 2) + std::pow(d.y() * px / camera_.fy, 2);
-}
-
 Eigen::Isometry3d DelaunayConsistency::rigidMotion(
     const std::vector<FeatureCorrespondence>& features, const std::vector<bool>& use) const {
   const long n = std::count(use.begin(), use.end(), true);
@@ -45,8 +35,8 @@ DelaunayConsistency::Change DelaunayConsistency::residual(const FeatureCorrespon
   if (norm < 1e-12) return {0.0, 0.0};
   const Eigen::Vector3d d = r / norm;
   // The residual's variance along itself: both measurements' noise.
-  const double variance =
-      varianceAlong(f.current, d) + varianceAlong(f.previous, motion.linear().transpose() * d);
+  const double variance = noise_.varianceAlong(f.current, d) +
+                          noise_.varianceAlong(f.previous, motion.linear().transpose() * d);
   return {norm, norm / std::sqrt(variance)};
 }
 
@@ -58,8 +48,9 @@ DelaunayConsistency::Change DelaunayConsistency::edgeChange(const FeatureCorresp
   if (before < 1e-9 || after < 1e-9) return {0.0, 0.0};
   // The length's variance: both endpoints' noise along the edge, in both frames.
   const Eigen::Vector3d d0 = edge_before / before, d1 = edge_after / after;
-  const double variance = varianceAlong(a.previous, d0) + varianceAlong(b.previous, d0) +
-                          varianceAlong(a.current, d1) + varianceAlong(b.current, d1);
+  const double variance = noise_.varianceAlong(a.previous, d0) +
+                          noise_.varianceAlong(b.previous, d0) +
+                          noise_.varianceAlong(a.current, d1) + noise_.varianceAlong(b.current, d1);
   return {std::abs(after - before), std::abs(after - before) / std::sqrt(variance)};
 }
 

@@ -1,10 +1,9 @@
-// alignRigid (declared in trajectory_metrics.h): kept apart from the metrics because it is the
-// only numerical-linear-algebra piece of the evaluation.
+// Kept apart from the metrics: the only numerical-linear-algebra piece of the evaluation.
+#include "ply_slam/eval/rigid_alignment.h"
+
 #include <Eigen/SVD>
 #include <stdexcept>
 #include <string>
-
-#include "ply_slam/eval/trajectory_metrics.h"
 
 namespace ply_slam {
 

@@ -9,7 +9,11 @@
 namespace ply_slam {
 
 LineFitter::LineFitter(const LineOptions& params, const PinholeCamera& camera)
-    : params_(params), camera_(camera), depth_(camera), refiner_(params, camera) {}
+    : params_(params),
+      camera_(camera),
+      noise_(camera, params.sigma_px),
+      depth_(camera),
+      refiner_(params, camera) {}
 
 constexpr double kSidePx = 2.0;  // where the two sides of a line are read
 
@@ -35,20 +39,12 @@ double LineFitter::depthNear(const cv::Mat& depth_m, const Eigen::Vector2d& raw,
 }
 
 Eigen::Matrix3d LineFitter::sampleCovariance(const Eigen::Vector2d& uv, double z) const {
-  const Eigen::Vector3d p = camera_.backProject(uv, z);
-  Eigen::Matrix3d J;
-  J << z / camera_.fx, 0.0, p.x() / z,  //
-      0.0, z / camera_.fy, p.y() / z,   //
-      0.0, 0.0, 1.0;
-  const double s2 = params_.sigma_px * params_.sigma_px;
-  const Eigen::Vector3d lambda(s2, s2, camera_.depth_noise.variance(z));
-  return J * lambda.asDiagonal() * J.transpose();
+  return noise_.covariance(camera_.backProject(uv, z));
 }
 
-double LineFitter::mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& cov,
+double LineFitter::mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& info,
                                      const Eigen::Vector3d& a, const Eigen::Vector3d& d) {
-  // The line point nearest to p in the metric of cov, then the residual's squared norm.
-  const Eigen::Matrix3d info = cov.inverse();
+  // The line point nearest to p in the metric of Σ, then the residual's squared norm.
   const Eigen::Vector3d r0 = p - a;
   const Eigen::Vector3d info_d = info * d;
   const double t = info_d.dot(r0) / info_d.dot(d);
@@ -85,12 +81,8 @@ Line3D LineFitter::fitPoints(const std::vector<Eigen::Vector3d>& points,
   // Inliers of the line through a with direction d: squared Mahalanobis distance below chi2.
   auto inliersOf = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& d, std::vector<int>& out) {
     out.clear();
-    for (int k = 0; k < n; ++k) {
-      const Eigen::Vector3d r0 = points[k] - a;
-      const Eigen::Vector3d info_d = info[k] * d;
-      const Eigen::Vector3d r = r0 - (info_d.dot(r0) / info_d.dot(d)) * d;
-      if (r.dot(info[k] * r) < params_.chi2_inlier) out.push_back(k);
-    }
+    for (int k = 0; k < n; ++k)
+      if (mahalanobisToLine(points[k], info[k], a, d) < params_.chi2_inlier) out.push_back(k);
   };
   std::vector<int> inliers, best;
   auto consensus = [&](int i, int j) {

@@ -2,6 +2,7 @@
 
 #include "ply_slam/common/hamming.h"
 #include "ply_slam/features/best_two.h"
+#include "ply_slam/features/line_distance.h"
 
 #include <algorithm>
 #include <climits>
@@ -13,9 +14,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinProjectionDepth = 0.05;  // m; endpoints nearer (or behind) do not project
-
-// Hamming distance of two 32-byte LBD rows (OpenCV's, vectorised at run time).
-int hamming(const uchar* a, const uchar* b) { return hammingDistance(a, b, 32); }  // LBD: 32 bytes
 
 }  // namespace
 
@@ -58,8 +56,8 @@ bool LineMatcher::pairPasses(const Projected& p, const Observed& o) const {
   if (o.length < 1.0) return false;
   // Directed: both lines are oriented by polarity, which a rigid motion keeps.
   if (p.d.dot(o.d) < cos_max_angle_) return false;
-  if (std::abs(o.l.dot(p.ps.homogeneous())) > params_.match_distance_px ||
-      std::abs(o.l.dot(p.pe.homogeneous())) > params_.match_distance_px)
+  if (std::abs(lineDistance(o.l, p.ps)) > params_.match_distance_px ||
+      std::abs(lineDistance(o.l, p.pe)) > params_.match_distance_px)
     return false;
   // The two must overlap along the line: endpoints may move (occlusion, detection), but a
   // segment beside the projected one is another edge on the same line.
@@ -83,7 +81,9 @@ bool LineMatcher::bestLine(const SegmentToMatch& s, const std::vector<Observed>&
   BestTwo found;
   for (size_t j = 0; j < observed.size(); ++j) {
     if (!pairPasses(p, observed[j])) continue;
-    found.offer(hamming(s.descriptor, descriptors.ptr(static_cast<int>(j))), static_cast<long>(j));
+    found.offer(
+        hammingDistance(s.descriptor, descriptors.ptr(static_cast<int>(j)), descriptors.cols),
+        static_cast<long>(j));
   }
   if (!found.accept(params_.max_descriptor_distance, params_.match_ratio)) return false;
   m.b = static_cast<int>(found.index);
@@ -145,7 +145,8 @@ std::vector<LineMatch> LineMatcher::matchDescriptors(const FrameLines& a,
   for (size_t i = 0; i < na; ++i)
     for (size_t j = 0; j < nb; ++j)
       distances[i * nb + j] =
-          hamming(a.descriptors.ptr(static_cast<int>(i)), b.descriptors.ptr(static_cast<int>(j)));
+          hammingDistance(a.descriptors.ptr(static_cast<int>(i)),
+                          b.descriptors.ptr(static_cast<int>(j)), a.descriptors.cols);
   // Nearest A line of every B line, for the mutual check.
   std::vector<int> best_a(nb, -1);
   for (size_t j = 0; j < nb; ++j) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ply_slam/features/line_distance.h"
 #include "ply_slam/features/weighted_line_fit.h"
 
 namespace ply_slam {
@@ -57,8 +58,8 @@ bool LineMerger::mergeable(const LineFeature& a, const LineFeature& b) const {
   const LineFeature& longer = length_a >= length_b ? a : b;
   const LineFeature& shorter = length_a >= length_b ? b : a;
   const Eigen::Vector3d l = longer.line();
-  if (std::abs(l.dot(shorter.start.homogeneous())) > max_distance_px_ ||
-      std::abs(l.dot(shorter.end.homogeneous())) > max_distance_px_)
+  if (std::abs(lineDistance(l, shorter.start)) > max_distance_px_ ||
+      std::abs(lineDistance(l, shorter.end)) > max_distance_px_)
     return false;
   // Gap along the longer line between the two intervals (negative when they overlap).
   const Eigen::Vector2d d = longer.direction();

@@ -53,8 +53,8 @@ const KeyFrameWords* BowDatabase::find(long keyframe_id) const {
   return it == keyframes_.end() ? nullptr : &it->second;
 }
 
-// With both bags at unit L1 norm and weights >= 0, bowScore = sum over shared words of
-// min(a_i, b_i) (bow_vector.cpp), so walking the query's words' postings gives every score.
+// unitBowScore of the (normalised) query against every keyframe at once: the query's words in
+// order, each adding its sharedWordScore to the keyframes whose postings hold it.
 void BowDatabase::accumulate(const InvertedIndex& inverted, const BowVector& bow, bool lines,
                              std::unordered_map<long, BowCandidate>& scores) {
   for (const auto& [word, weight] : bow) {
@@ -62,7 +62,7 @@ void BowDatabase::accumulate(const InvertedIndex& inverted, const BowVector& bow
     for (const Posting& p : inverted[word]) {
       BowCandidate& c = scores[p.keyframe_id];
       c.keyframe_id = p.keyframe_id;
-      (lines ? c.line_score : c.point_score) += std::min(weight, p.weight);
+      (lines ? c.line_score : c.point_score) += sharedWordScore(weight, p.weight);
     }
   }
 }

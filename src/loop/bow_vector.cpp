@@ -21,23 +21,29 @@ void normaliseL1(BowVector& v) {
   for (auto& entry : v) entry.second /= norm;
 }
 
-// Walks the union of both (sorted) vectors' words once. For non-negative weights at unit norm
-// this equals the sum of min(a_i, b_i) over the shared words (BowDatabase's shortcut).
-double bowScore(const BowVector& v1, const BowVector& v2) {
-  const double n1 = l1Norm(v1), n2 = l1Norm(v2);
-  if (n1 <= 0.0 || n2 <= 0.0) return 0.0;
-  double distance = 0.0;
-  auto a = v1.begin(), b = v2.begin();
-  while (a != v1.end() || b != v2.end()) {
-    if (b == v2.end() || (a != v1.end() && a->first < b->first)) {
-      distance += std::abs(a++->second) / n1;
-    } else if (a == v1.end() || b->first < a->first) {
-      distance += std::abs(b++->second) / n2;
+// Walks both (sorted) vectors' words once.
+double unitBowScore(const BowVector& a, const BowVector& b) {
+  double score = 0.0;
+  auto i = a.begin(), j = b.begin();
+  while (i != a.end() && j != b.end()) {
+    if (i->first < j->first) {
+      ++i;
+    } else if (j->first < i->first) {
+      ++j;
     } else {
-      distance += std::abs(a++->second / n1 - b++->second / n2);
+      score += sharedWordScore(i++->second, j++->second);
     }
   }
-  return std::clamp(1.0 - 0.5 * distance, 0.0, 1.0);
+  return score;
+}
+
+// With |x| = 1 for both, |x - y|_1 = 2 - 2 sum min(x_i, y_i) over the shared words.
+double bowScore(const BowVector& v1, const BowVector& v2) {
+  if (l1Norm(v1) <= 0.0 || l1Norm(v2) <= 0.0) return 0.0;
+  BowVector a = v1, b = v2;
+  normaliseL1(a);
+  normaliseL1(b);
+  return std::clamp(unitBowScore(a, b), 0.0, 1.0);
 }
 
 }  // namespace ply_slam

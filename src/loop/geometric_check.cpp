@@ -5,6 +5,7 @@
 #include <random>
 #include <utility>
 
+#include "ply_slam/eval/rigid_alignment.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 
 namespace ply_slam {

@@ -107,10 +107,14 @@ LoopQueryScores LoopDetector::score(long query_id) const {
   out.query_id = query_id;
   out.reference_id = bestEarlierCovisible(query);
   if (out.reference_id) {
+    // Scored as the database scores the candidates: the query's bags normalised as query()
+    // normalises them, against the stored (unit-norm) bags.
     const KeyFrameWords* ref = database_.find(*out.reference_id);
-    out.reference =
-        pairScores(query, entry(*out.reference_id), bowScore(words->points, ref->points),
-                   bowScore(words->lines, ref->lines), nullptr);
+    BowVector points = words->points, lines = words->lines;
+    normaliseL1(points);
+    normaliseL1(lines);
+    out.reference = pairScores(query, entry(*out.reference_id), unitBowScore(points, ref->points),
+                               unitBowScore(lines, ref->lines), nullptr);
   }
   // Later keyframes, the query itself, recent ones and covisible ones are never candidates.
   const auto exclude = [&](long id) {

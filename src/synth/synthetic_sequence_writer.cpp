@@ -83,18 +83,22 @@ std::string cameraYaml(const PinholeCamera& c, const std::string& comment) {
   return y.str();
 }
 
-SynthWriteStats writeSyntheticSequence(const SyntheticSequence& seq, const std::string& dir,
-                                       const std::function<void(int)>& progress) {
-  const fs::path root(dir);
+namespace {
+
+void createFolders(const fs::path& root) {
   std::error_code ec;
   for (const char* sub : {"rgb", "depth", "masks"}) {
     fs::create_directories(root / sub, ec);
     if (ec || !fs::is_directory(root / sub))
-      throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+      throw std::runtime_error(root.string() + ": cannot create the output folder (" +
+                               ec.message() + ")");
   }
+}
+
+// camera.yaml, instances.txt and lines.txt: what the scene is, independent of the frames.
+void writeSceneFiles(const SyntheticSequence& seq, const fs::path& root) {
   const SynthOptions& o = seq.options();
   const Scene& scene = seq.scene();
-
   std::ostringstream comment;
   comment << "synthetic " << scene.name() << " scene, " << o.walkers << " walkers, " << o.frames
           << " frames, seed " << o.seed << (o.loop ? ", loop" : "")
@@ -119,60 +123,88 @@ SynthWriteStats writeSyntheticSequence(const SyntheticSequence& seq, const std::
     lines << l.a.x() << " " << l.a.y() << " " << l.a.z() << " " << l.b.x() << " " << l.b.y() << " "
           << l.b.z() << "\n";
   writeText(root / "lines.txt", lines.str());
+}
 
-  std::ostringstream rgb_list, depth_list, assoc, mask_list;
-  rgb_list << "# color images\n# timestamp filename\n";
-  depth_list << "# depth maps (metres x 5000)\n# timestamp filename\n";
-  mask_list << "# instance masks (instances.txt)\n# timestamp filename\n";
+// The three encodings of a frame are independent: one per thread.
+void writeFrameImages(const std::pair<fs::path, cv::Mat> (&images)[3]) {
+  std::string failure;
+  std::mutex failure_mutex;
+  cv::parallel_for_(cv::Range(0, 3), [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      try {
+        writePng(images[k].first, images[k].second);
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        failure = e.what();
+      }
+    }
+  });
+  if (!failure.empty()) throw std::runtime_error(failure);
+}
+
+// The frame lists TUM's tools read and the ground truth, filled frame by frame.
+struct FrameLists {
+  std::ostringstream rgb, depth, masks, associations;
   Trajectory ground_truth;
+
+  FrameLists() {
+    rgb << "# color images\n# timestamp filename\n";
+    depth << "# depth maps (metres x 5000)\n# timestamp filename\n";
+    masks << "# instance masks (instances.txt)\n# timestamp filename\n";
+  }
+
+  void write(const fs::path& root) const {
+    writeText(root / "rgb.txt", rgb.str());
+    writeText(root / "depth.txt", depth.str());
+    writeText(root / "masks.txt", masks.str());
+    writeText(root / "associations.txt", associations.str());
+    try {
+      writeTumTrajectory((root / "groundtruth.txt").string(), ground_truth);
+    } catch (const std::exception& e) {
+      throw std::runtime_error((root / "groundtruth.txt").string() + ": cannot write (" + e.what() +
+                               ")");
+    }
+  }
+};
+
+// Renders frame i, writes its images and lists them.
+void writeFrame(const SyntheticSequence& seq, int i, const fs::path& root, FrameLists& lists,
+                SynthWriteStats& stats) {
+  Stopwatch render_clock;
+  const RenderedFrame f = seq.render(i);
+  stats.render_ms += render_clock.elapsedMs();
+
+  Stopwatch write_clock;
+  const std::string stamp = stampText(seq.stamp(i));
+  const std::string rgb = "rgb/" + stamp + ".png", depth = "depth/" + stamp + ".png",
+                    mask = "masks/" + stamp + ".png";
+  writeFrameImages({{root / rgb, f.rgb},
+                    {root / depth, depthPng(f.depth, seq.camera().depth_factor)},
+                    {root / mask, f.instance}});
+  stats.write_ms += write_clock.elapsedMs();
+
+  lists.rgb << stamp << " " << rgb << "\n";
+  lists.depth << stamp << " " << depth << "\n";
+  lists.masks << stamp << " " << mask << "\n";
+  lists.associations << stamp << " " << rgb << " " << stamp << " " << depth << "\n";
+  lists.ground_truth.push_back({seq.stamp(i), seq.pose(i)});
+  ++stats.frames;
+}
+
+}  // namespace
+
+SynthWriteStats writeSyntheticSequence(const SyntheticSequence& seq, const std::string& dir,
+                                       const std::function<void(int)>& progress) {
+  const fs::path root(dir);
+  createFolders(root);
+  writeSceneFiles(seq, root);
+  FrameLists lists;
   SynthWriteStats stats;
   for (int i = 0; i < seq.size(); ++i) {
-    Stopwatch render_clock;
-    const RenderedFrame f = seq.render(i);
-    stats.render_ms += render_clock.elapsedMs();
-
-    Stopwatch write_clock;
-    const std::string stamp = stampText(seq.stamp(i));
-    const std::string rgb = "rgb/" + stamp + ".png", depth = "depth/" + stamp + ".png",
-                      mask = "masks/" + stamp + ".png";
-    // The three encodings are independent: one per thread.
-    const std::pair<fs::path, cv::Mat> images[] = {
-        {root / rgb, f.rgb},
-        {root / depth, depthPng(f.depth, seq.camera().depth_factor)},
-        {root / mask, f.instance}};
-    std::string failure;
-    std::mutex failure_mutex;
-    cv::parallel_for_(cv::Range(0, 3), [&](const cv::Range& range) {
-      for (int k = range.start; k < range.end; ++k) {
-        try {
-          writePng(images[k].first, images[k].second);
-        } catch (const std::exception& e) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
-          failure = e.what();
-        }
-      }
-    });
-    if (!failure.empty()) throw std::runtime_error(failure);
-    stats.write_ms += write_clock.elapsedMs();
-
-    rgb_list << stamp << " " << rgb << "\n";
-    depth_list << stamp << " " << depth << "\n";
-    mask_list << stamp << " " << mask << "\n";
-    assoc << stamp << " " << rgb << " " << stamp << " " << depth << "\n";
-    ground_truth.push_back({seq.stamp(i), seq.pose(i)});
-    ++stats.frames;
+    writeFrame(seq, i, root, lists, stats);
     if (progress) progress(i);
   }
-  writeText(root / "rgb.txt", rgb_list.str());
-  writeText(root / "depth.txt", depth_list.str());
-  writeText(root / "masks.txt", mask_list.str());
-  writeText(root / "associations.txt", assoc.str());
-  try {
-    writeTumTrajectory((root / "groundtruth.txt").string(), ground_truth);
-  } catch (const std::exception& e) {
-    throw std::runtime_error((root / "groundtruth.txt").string() + ": cannot write (" + e.what() +
-                             ")");
-  }
+  lists.write(root);
   return stats;
 }
 

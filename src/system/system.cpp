@@ -43,7 +43,7 @@ System::System(const SystemConfig& config, MappingMode mode)
         std::make_unique<MappingThread>([this](const MappingJob& job) { return mapKeyFrame(job); });
 }
 
-void System::validate(const RgbdImages& images) const {
+void System::validate(const RgbdImages& images, const std::vector<Instance>& instances) const {
   const auto& cam = config_.camera;
   if (images.rgb.empty()) throw InvalidFrame("empty RGB image");
   if (images.depth.empty()) throw InvalidFrame("empty depth image");
@@ -63,14 +63,14 @@ void System::validate(const RgbdImages& images) const {
   if (images.stamp <= last_stamp_)
     throw InvalidFrame("stamp " + std::to_string(images.stamp) +
                        " does not follow the previous frame's " + std::to_string(last_stamp_));
-}
-
-FrameResult System::process(const RgbdImages& images, const std::vector<Instance>& instances) {
-  validate(images);
   for (const auto& instance : instances)
     if (instance.mask.type() != CV_8UC1 || instance.mask.size() != images.rgb.size())
       throw InvalidFrame("instance mask of '" + instance.class_name +
                          "' must be 8UC1 of the image size");
+}
+
+FrameResult System::process(const RgbdImages& images, const std::vector<Instance>& instances) {
+  validate(images, instances);
   last_stamp_ = images.stamp;
 
   FrameResult result;
@@ -79,43 +79,10 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   Stopwatch total;
   cv::Mat gray;
   cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
-  // Lines (when enabled): the segments are detected on a second thread beside ORB, then
-  // described (here) and fitted in 3D (there) side by side: neither needs the other.
-  std::future<std::vector<LineFeature>> segments;
-  double detection_ms = 0.0;
-  if (line_extractor_) {
-    segments = std::async(std::launch::async, [&] {
-      Stopwatch watch;
-      std::vector<LineFeature> detected = line_extractor_->detect(gray, config_.camera);
-      detection_ms = watch.elapsedMs();
-      return detected;
-    });
-  }
-  FrameFeatures features =
-      FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
-                             images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0);
-  // A person the segmenter missed in this frame is still where the last frames put it.
-  const std::vector<Instance> judged = memory_.complete(instances, gray);
-  rejectDynamic(features, images.stamp, judged, result);
-  memory_.remember(judged, result.measured_instances, result.dynamic_instances, gray);
-  result.instances = judged;
-  Frame frame(result.frame_id, images.stamp, std::move(features));
+  std::future<DetectedLines> lines = detectLinesAside(gray);
+  Frame frame = pointFrame(images, gray, instances, result);
   result.timing.features_ms = total.elapsedMs();
-  if (segments.valid()) {
-    FrameLines frame_lines;
-    frame_lines.lines = segments.get();
-    Stopwatch watch;
-    std::future<void> fitted = std::async(std::launch::async, [&] {
-      frame_lines.fit(images.depth, *line_fitter_, LineFitMethod::kSampled);
-    });
-    frame_lines.descriptors = line_extractor_->describe(gray, frame_lines.lines);
-    fitted.get();
-    result.timing.lines_ms = detection_ms + watch.elapsedMs();
-    if (tracker_.velocity()) frame_lines.correctMotion(config_.camera, *tracker_.velocity());
-    result.dynamic_lines = frame_lines.removeIf(
-        DynamicRejector::linesTouching(frame_lines.lines, result.dynamic_mask));
-    frame.setLines(std::move(frame_lines));
-  }
+  if (lines.valid()) addLines(lines.get(), images, gray, frame, result);
 
   // Tracking reads and extends the map: under its lock, taken after the frame's features.
   Stopwatch tracking;
@@ -126,25 +93,69 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   result.timing.tracking_ms = tracking.elapsedMs();
   result.timing.total_ms = total.elapsedMs();
   markInliers(frame, result.features);
-
-  if (result.tracking.new_keyframe) {
-    MappingJob job = MappingJob{result.tracking.new_keyframe, images, judged,
-                                result.dynamic_instances, result.dynamic_mask}
-                         .detached();
-    if (mapping_thread_) {
-      mapping_thread_->push(std::move(job));
-    } else {
-      lock.unlock();
-      result.mapped.push_back(mapKeyFrame(job));
-      lock.lock();
-      // The frame was tracked before its keyframe closed the loop: it moves with the map.
-      if (const auto& loop = result.mapped.back().loop_correction)
-        result.tracking.T_cw = result.tracking.T_cw * loop->world_correction.inverse();
-    }
-  }
+  if (result.tracking.new_keyframe) handOverKeyFrame(images, lock, result);
   for (const auto& mapped : result.mapped) result.timing.mapping_ms += mapped.ms;
   rememberTracked(result);
   return result;
+}
+
+std::future<System::DetectedLines> System::detectLinesAside(const cv::Mat& gray) const {
+  if (!line_extractor_) return {};
+  return std::async(std::launch::async, [this, &gray] {
+    Stopwatch watch;
+    DetectedLines detected;
+    detected.lines = line_extractor_->detect(gray, config_.camera);
+    detected.ms = watch.elapsedMs();
+    return detected;
+  });
+}
+
+Frame System::pointFrame(const RgbdImages& images, const cv::Mat& gray,
+                         const std::vector<Instance>& instances, FrameResult& result) {
+  FrameFeatures features =
+      FrameFeatures::extract(gray, images.depth, config_.camera, extractor_, tracker_.velocity(),
+                             images.depth_stamp != 0.0 ? images.depth_stamp - images.stamp : 0.0);
+  // A person the segmenter missed in this frame is still where the last frames put it.
+  std::vector<Instance> judged = memory_.complete(instances, gray);
+  rejectDynamic(features, images.stamp, judged, result);
+  memory_.remember(judged, result.measured_instances, result.dynamic_instances, gray);
+  result.instances = std::move(judged);
+  return Frame(result.frame_id, images.stamp, std::move(features));
+}
+
+void System::addLines(DetectedLines detected, const RgbdImages& images, const cv::Mat& gray,
+                      Frame& frame, FrameResult& result) {
+  FrameLines frame_lines;
+  frame_lines.lines = std::move(detected.lines);
+  // Described here and fitted in 3D there, side by side: neither needs the other.
+  Stopwatch watch;
+  std::future<void> fitted = std::async(std::launch::async, [&] {
+    frame_lines.fit(images.depth, *line_fitter_, LineFitMethod::kSampled);
+  });
+  frame_lines.descriptors = line_extractor_->describe(gray, frame_lines.lines);
+  fitted.get();
+  result.timing.lines_ms = detected.ms + watch.elapsedMs();
+  if (tracker_.velocity()) frame_lines.correctMotion(config_.camera, *tracker_.velocity());
+  result.dynamic_lines =
+      frame_lines.removeIf(DynamicRejector::linesTouching(frame_lines.lines, result.dynamic_mask));
+  frame.setLines(std::move(frame_lines));
+}
+
+void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mutex>& lock,
+                              FrameResult& result) {
+  MappingJob job = MappingJob{result.tracking.new_keyframe, images, result.instances,
+                              result.dynamic_instances, result.dynamic_mask}
+                       .detached();
+  if (mapping_thread_) {
+    mapping_thread_->push(std::move(job));
+    return;
+  }
+  lock.unlock();
+  result.mapped.push_back(mapKeyFrame(job));
+  lock.lock();
+  // The frame was tracked before its keyframe closed the loop: it moves with the map.
+  if (const auto& loop = result.mapped.back().loop_correction)
+    result.tracking.T_cw = result.tracking.T_cw * loop->world_correction.inverse();
 }
 
 void System::rememberTracked(const FrameResult& result) {

@@ -67,9 +67,8 @@ double parseNumber(const std::string& option, const std::string& text, bool allo
 }
 
 int parseFrameCount(const std::string& option, const std::string& text) {
-  const std::optional<long> value = ply_slam::parseWholeNumber(text, 1, 1000000);
-  if (!value) throw UsageError(option + " needs a whole number of frames >= 1, got '" + text + "'");
-  return static_cast<int>(*value);
+  return static_cast<int>(
+      ply_slam::wholeNumberArgument(option, text, 1, 1000000, "a whole number of frames >= 1"));
 }
 
 // The command (ate or rpe) first, then its options and the two files.

@@ -26,11 +26,11 @@
 
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
-#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/pose_interpolation.h"
 #include "ply_slam/features/frame_lines.h"
+#include "ply_slam/features/line_distance.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/line_matcher.h"
@@ -51,9 +51,7 @@ const char* const kUsage =
     "usage: ply_slam_lines --sequence DIR --config FILE [--max-frames N] [--offset K] [--json]\n";
 
 long parsePositive(const std::string& option, const std::string& text) {
-  const std::optional<long> value = parseWholeNumber(text, 1, 1000000000L);
-  if (!value) throw UsageError(option + " needs a whole number >= 1, got '" + text + "'");
-  return *value;
+  return wholeNumberArgument(option, text, 1, 1000000000L, "a whole number >= 1");
 }
 
 Options parse(int argc, char** argv) {
@@ -132,109 +130,150 @@ void printMethod(const char* name, const MethodReport& r, int offset) {
             << number(median(r.fitting_ms, std::nan("")), 3) << " ms\n";
 }
 
-int run(const Options& options) {
-  const SystemConfig config = loadConfig(options.config);
-  const TumSequence sequence(options.sequence);
-  const PinholeCamera& camera = config.camera;
-  const LineExtractor extractor(config.lines);
-  const LineFitter fitter(config.lines, camera);
-  const LineMatcher matcher(config.lines, camera);
+// The same 2D lines of one frame with two 3D fits, and its ground-truth pose.
+struct Frame {
+  FrameLines sampled, endpoints;
+  std::optional<Eigen::Isometry3d> T_wc;
+};
 
+// Everything the tool reports.
+struct LinesReport {
+  MethodReport sampled, endpoints;
+  std::vector<double> extraction_ms, description_ms, total_ms, lines_per_frame;
+  size_t frames = 0;
+  long pairs = 0, matches_total = 0, gated_total = 0;  // frame pairs k -> k+offset
+  double perPair(long count) const {
+    return pairs ? static_cast<double>(count) / pairs : std::nan("");
+  }
+};
+
+// The tool's parts, built from the config.
+struct LineTools {
+  explicit LineTools(const SystemConfig& config)
+      : camera(config.camera),
+        extractor(config.lines),
+        fitter(config.lines, camera),
+        matcher(config.lines, camera) {}
+  const PinholeCamera camera;
+  const LineExtractor extractor;
+  const LineFitter fitter;
+  const LineMatcher matcher;
+};
+
+// One frame's lines fitted both ways, its timings and rates into the report.
+Frame extractFrame(const TumSequence& sequence, size_t i, const LineTools& tools,
+                   LinesReport& report) {
+  const RgbdImages images = sequence.load(i, tools.camera.depth_factor);
+  cv::Mat gray;
+  cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+  Frame f;
+  LineTimings t;
+  f.sampled = FrameLines::extract(gray, images.depth, tools.camera, tools.extractor, tools.fitter,
+                                  LineFitMethod::kSampled, &t);
+  f.endpoints = f.sampled;
+  Stopwatch watch;
+  f.endpoints.fit(images.depth, tools.fitter, LineFitMethod::kEndpoints);
+  report.endpoints.fitting_ms.push_back(watch.elapsedMs());
+  report.sampled.fitting_ms.push_back(t.fitting_ms);
+  report.extraction_ms.push_back(t.extraction_ms);
+  report.description_ms.push_back(t.description_ms);
+  report.total_ms.push_back(t.extraction_ms + t.description_ms + t.fitting_ms);
+  report.lines_per_frame.push_back(static_cast<double>(f.sampled.size()));
+  report.sampled.rates.push_back(f.sampled.reconstructionRate());
+  report.endpoints.rates.push_back(f.endpoints.reconstructionRate());
+  report.sampled.accepted += static_cast<long>(f.sampled.numLines3D());
+  report.endpoints.accepted += static_cast<long>(f.endpoints.numLines3D());
+  if (sequence.hasGroundTruth())
+    f.T_wc = interpolatePose(sequence.groundTruth(), images.stamp, 0.05);
+  return f;
+}
+
+// Both fits of frame a's matched lines moved into frame b (T_ba): the distances of their
+// projected endpoints from the line observed in b.
+void scorePair(const Frame& a, const Frame& b, const Eigen::Isometry3d& T_ba,
+               const std::vector<LineMatch>& matches, const PinholeCamera& camera,
+               LinesReport& report) {
+  for (const LineMatch& m : matches) {
+    const Eigen::Vector3d l = b.sampled.lines[m.b].line();
+    for (auto [lines, method] :
+         {std::pair{&a.sampled, &report.sampled}, {&a.endpoints, &report.endpoints}}) {
+      const Line3D& line = lines->lines3d[m.a];
+      if (!line.valid) continue;
+      const Eigen::Vector3d Ps = T_ba * line.start, Pe = T_ba * line.end;
+      if (Ps.z() <= 0.0 || Pe.z() <= 0.0) continue;
+      ++method->accepted_matched;
+      method->distances_px.push_back(std::abs(lineDistance(l, camera.project(Ps))));
+      method->distances_px.push_back(std::abs(lineDistance(l, camera.project(Pe))));
+    }
+  }
+}
+
+// Accuracy: frame k's accepted 3D lines in frame k+offset under the ground-truth motion.
+void scoreAccuracy(const std::vector<Frame>& frames, int offset, const LineTools& tools,
+                   LinesReport& report) {
+  for (size_t k = 0; k + offset < frames.size(); ++k) {
+    const Frame& a = frames[k];
+    const Frame& b = frames[k + offset];
+    if (!a.T_wc || !b.T_wc) continue;
+    ++report.pairs;
+    const Eigen::Isometry3d T_ba = b.T_wc->inverse() * *a.T_wc;
+    const std::vector<LineMatch> matches = tools.matcher.matchDescriptors(a.sampled, b.sampled);
+    report.matches_total += static_cast<long>(matches.size());
+    report.gated_total +=
+        static_cast<long>(tools.matcher.matchProjected(a.sampled, b.sampled, T_ba).size());
+    scorePair(a, b, T_ba, matches, tools.camera, report);
+  }
+}
+
+void printJson(const Options& options, const std::string& detector, const LinesReport& r) {
+  std::cout << "{\"sequence\": \"" << options.sequence << "\", \"frames\": " << r.frames
+            << ", \"detector\": \"" << detector << "\""
+            << ", \"lines_per_frame\": " << number(mean(r.lines_per_frame), 2)
+            << ", \"offset\": " << options.offset << ", \"frame_pairs\": " << r.pairs
+            << ", \"descriptor_matches_per_pair\": " << number(r.perPair(r.matches_total), 2)
+            << ", \"gated_matches_per_pair\": " << number(r.perPair(r.gated_total), 2)
+            << ", \"sampled\": " << methodJson(r.sampled)
+            << ", \"endpoints\": " << methodJson(r.endpoints)
+            << ", \"timing_ms\": {\"extraction_median\": "
+            << number(median(r.extraction_ms, std::nan("")), 3)
+            << ", \"description_median\": " << number(median(r.description_ms, std::nan("")), 3)
+            << ", \"fitting_median\": " << number(median(r.sampled.fitting_ms, std::nan("")), 3)
+            << ", \"total_median\": " << number(median(r.total_ms, std::nan("")), 3) << "}}\n";
+}
+
+void printText(const Options& options, const std::string& detector, const LinesReport& r) {
+  std::cout << "Line features: " << options.sequence << "\n"
+            << "  frames " << r.frames << ", detector " << detector << ", 2D lines per frame "
+            << number(mean(r.lines_per_frame), 1) << "\n"
+            << "  frame pairs k->k+" << options.offset << " with ground truth " << r.pairs
+            << ", LBD matches per pair " << number(r.perPair(r.matches_total), 1)
+            << " (pose-gated matcher with the true pose: " << number(r.perPair(r.gated_total), 1)
+            << ")\n";
+  printMethod("PAPER.md §3.1 (sampled, RANSAC, PCA)", r.sampled, options.offset);
+  printMethod("traditional (endpoint depth)", r.endpoints, options.offset);
+  std::cout << "  time per frame (median)  extraction "
+            << number(median(r.extraction_ms, std::nan("")), 2) << " ms, description "
+            << number(median(r.description_ms, std::nan("")), 2) << " ms, fitting "
+            << number(median(r.sampled.fitting_ms, std::nan("")), 2) << " ms, total "
+            << number(median(r.total_ms, std::nan("")), 2) << " ms\n";
+}
+
+int run(const Options& options) {
+  const LineTools tools(loadConfig(options.config));
+  const TumSequence sequence(options.sequence);
   const size_t n = options.max_frames > 0
                        ? std::min(sequence.size(), static_cast<size_t>(options.max_frames))
                        : sequence.size();
-  struct Frame {
-    FrameLines sampled, endpoints;  // the same 2D lines, two 3D fits
-    std::optional<Eigen::Isometry3d> T_wc;
-  };
+  LinesReport report;
   std::vector<Frame> frames;
   frames.reserve(n);
-  MethodReport sampled, endpoints;
-  std::vector<double> extraction_ms, description_ms, total_ms, lines_per_frame;
-  for (size_t i = 0; i < n; ++i) {
-    const RgbdImages images = sequence.load(i, camera.depth_factor);
-    cv::Mat gray;
-    cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
-    Frame f;
-    LineTimings t;
-    f.sampled = FrameLines::extract(gray, images.depth, camera, extractor, fitter,
-                                    LineFitMethod::kSampled, &t);
-    f.endpoints = f.sampled;
-    Stopwatch watch;
-    f.endpoints.fit(images.depth, fitter, LineFitMethod::kEndpoints);
-    endpoints.fitting_ms.push_back(watch.elapsedMs());
-    sampled.fitting_ms.push_back(t.fitting_ms);
-    extraction_ms.push_back(t.extraction_ms);
-    description_ms.push_back(t.description_ms);
-    total_ms.push_back(t.extraction_ms + t.description_ms + t.fitting_ms);
-    lines_per_frame.push_back(static_cast<double>(f.sampled.size()));
-    sampled.rates.push_back(f.sampled.reconstructionRate());
-    endpoints.rates.push_back(f.endpoints.reconstructionRate());
-    sampled.accepted += static_cast<long>(f.sampled.numLines3D());
-    endpoints.accepted += static_cast<long>(f.endpoints.numLines3D());
-    if (sequence.hasGroundTruth())
-      f.T_wc = interpolatePose(sequence.groundTruth(), images.stamp, 0.05);
-    frames.push_back(std::move(f));
-  }
-
-  // Accuracy: frame k's accepted 3D lines in frame k+offset under the ground-truth motion.
-  long pairs = 0, matches_total = 0, gated_total = 0;
-  for (size_t k = 0; k + options.offset < frames.size(); ++k) {
-    const Frame& a = frames[k];
-    const Frame& b = frames[k + options.offset];
-    if (!a.T_wc || !b.T_wc) continue;
-    ++pairs;
-    const Eigen::Isometry3d T_ba = b.T_wc->inverse() * *a.T_wc;
-    const std::vector<LineMatch> matches = matcher.matchDescriptors(a.sampled, b.sampled);
-    matches_total += static_cast<long>(matches.size());
-    gated_total += static_cast<long>(matcher.matchProjected(a.sampled, b.sampled, T_ba).size());
-    for (const LineMatch& m : matches) {
-      const Eigen::Vector3d l = b.sampled.lines[m.b].line();
-      for (auto [lines, report] : {std::pair{&a.sampled, &sampled}, {&a.endpoints, &endpoints}}) {
-        const Line3D& line = lines->lines3d[m.a];
-        if (!line.valid) continue;
-        const Eigen::Vector3d Ps = T_ba * line.start, Pe = T_ba * line.end;
-        if (Ps.z() <= 0.0 || Pe.z() <= 0.0) continue;
-        ++report->accepted_matched;
-        report->distances_px.push_back(std::abs(l.dot(camera.project(Ps).homogeneous())));
-        report->distances_px.push_back(std::abs(l.dot(camera.project(Pe).homogeneous())));
-      }
-    }
-  }
-
-  if (options.json) {
-    std::cout << "{\"sequence\": \"" << options.sequence << "\", \"frames\": " << frames.size()
-              << ", \"detector\": \"" << extractor.detectorName() << "\""
-              << ", \"lines_per_frame\": " << number(mean(lines_per_frame), 2)
-              << ", \"offset\": " << options.offset << ", \"frame_pairs\": " << pairs
-              << ", \"descriptor_matches_per_pair\": "
-              << number(pairs ? static_cast<double>(matches_total) / pairs : std::nan(""), 2)
-              << ", \"gated_matches_per_pair\": "
-              << number(pairs ? static_cast<double>(gated_total) / pairs : std::nan(""), 2)
-              << ", \"sampled\": " << methodJson(sampled)
-              << ", \"endpoints\": " << methodJson(endpoints)
-              << ", \"timing_ms\": {\"extraction_median\": "
-              << number(median(extraction_ms, std::nan("")), 3)
-              << ", \"description_median\": " << number(median(description_ms, std::nan("")), 3)
-              << ", \"fitting_median\": " << number(median(sampled.fitting_ms, std::nan("")), 3)
-              << ", \"total_median\": " << number(median(total_ms, std::nan("")), 3) << "}}\n";
-    return 0;
-  }
-  std::cout << "Line features: " << options.sequence << "\n"
-            << "  frames " << frames.size() << ", detector " << extractor.detectorName()
-            << ", 2D lines per frame " << number(mean(lines_per_frame), 1) << "\n"
-            << "  frame pairs k->k+" << options.offset << " with ground truth " << pairs
-            << ", LBD matches per pair "
-            << number(pairs ? static_cast<double>(matches_total) / pairs : std::nan(""), 1)
-            << " (pose-gated matcher with the true pose: "
-            << number(pairs ? static_cast<double>(gated_total) / pairs : std::nan(""), 1) << ")\n";
-  printMethod("PAPER.md §3.1 (sampled, RANSAC, PCA)", sampled, options.offset);
-  printMethod("traditional (endpoint depth)", endpoints, options.offset);
-  std::cout << "  time per frame (median)  extraction "
-            << number(median(extraction_ms, std::nan("")), 2) << " ms, description "
-            << number(median(description_ms, std::nan("")), 2) << " ms, fitting "
-            << number(median(sampled.fitting_ms, std::nan("")), 2) << " ms, total "
-            << number(median(total_ms, std::nan("")), 2) << " ms\n";
+  for (size_t i = 0; i < n; ++i) frames.push_back(extractFrame(sequence, i, tools, report));
+  report.frames = frames.size();
+  scoreAccuracy(frames, options.offset, tools, report);
+  if (options.json)
+    printJson(options, tools.extractor.detectorName(), report);
+  else
+    printText(options, tools.extractor.detectorName(), report);
   return 0;
 }
 

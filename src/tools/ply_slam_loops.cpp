@@ -63,9 +63,7 @@ struct Options : RunArguments {
 void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (o.segmentation.take(arg, value) || o.take(arg, value)) return;
   if (arg == "--max-frames") {
-    const auto n = parseWholeNumber(value, 1, 1000000000L);
-    if (!n) throw UsageError("--max-frames needs a whole number >= 1, got '" + value + "'");
-    o.max_frames = *n;
+    o.max_frames = wholeNumberArgument(arg, value, 1, 1000000000L, "a whole number >= 1");
   } else if (arg == "--min-gap-s") {
     const auto s = parseRealNumber(value);
     if (!s || *s < 0)

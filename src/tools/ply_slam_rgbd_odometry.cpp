@@ -70,37 +70,47 @@ Eigen::Isometry3d nearestPose(const ply_slam::Trajectory& trajectory, double sta
   return best == trajectory.end() ? Eigen::Isometry3d::Identity() : best->T_wc;
 }
 
-int run(const Options& options) {
-  const ply_slam::SystemConfig config = ply_slam::loadConfig(options.config);
-  const ply_slam::PinholeCamera& camera = config.camera;
-  const ply_slam::TumSequence sequence(options.sequence);
-  if (sequence.unassociatedRgbFrames() > 0) {
-    std::cerr << "note: " << sequence.unassociatedRgbFrames()
-              << " rgb frames have no depth image and are skipped\n";
-  }
+// What a run of the odometry gives.
+struct OdometryRun {
+  ply_slam::Trajectory trajectory;
+  std::vector<double> compute_ms;  // per frame after the first
+  int failures = 0;
+};
 
-  // Only the camera matrix is set; everything else stays at the module's defaults.
-  // Lens distortion is ignored: the dense method works on raw pixels.
+// The module marks missing depth with NaN, not 0.
+cv::Mat odometryDepth(const cv::Mat& depth_m) {
+  cv::Mat depth = depth_m.clone();
+  depth.setTo(std::numeric_limits<float>::quiet_NaN(), depth == 0.0f);
+  return depth;
+}
+
+// compute(src = current, dst = previous): p_previous = Rt * p_current, so Rt is
+// T_previous_current and poses chain on the right.
+Eigen::Isometry3d chainedStep(const cv::Mat& Rt) {
+  Eigen::Matrix4d T_prev_cur;
+  cv::cv2eigen(Rt, T_prev_cur);
+  Eigen::Isometry3d step(T_prev_cur);
+  step.linear() = Eigen::Quaterniond(step.linear()).normalized().toRotationMatrix();
+  return step;
+}
+
+// Frame to frame over the whole sequence. Only the camera matrix is set; everything else stays
+// at the module's defaults. Lens distortion is ignored: the dense method works on raw pixels.
+OdometryRun runOdometry(const ply_slam::TumSequence& sequence,
+                        const ply_slam::PinholeCamera& camera) {
   const cv::Mat K =
       (cv::Mat_<double>(3, 3) << camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
   const cv::Ptr<cv::rgbd::RgbdOdometry> odometry = cv::rgbd::RgbdOdometry::create(K);
-
-  ply_slam::Trajectory trajectory;
-  trajectory.reserve(sequence.size());
-  std::vector<double> compute_ms;
-  int failures = 0;
+  OdometryRun run;
+  run.trajectory.reserve(sequence.size());
   cv::Ptr<cv::rgbd::OdometryFrame> previous;
   Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
-
   for (size_t i = 0; i < sequence.size(); ++i) {
     const ply_slam::RgbdImages images = sequence.load(i, camera.depth_factor);
     cv::Mat gray;
     cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
-    // The module marks missing depth with NaN, not 0.
-    cv::Mat depth = images.depth.clone();
-    depth.setTo(std::numeric_limits<float>::quiet_NaN(), depth == 0.0f);
-
-    cv::Ptr<cv::rgbd::OdometryFrame> current = cv::rgbd::OdometryFrame::create(gray, depth);
+    cv::Ptr<cv::rgbd::OdometryFrame> current =
+        cv::rgbd::OdometryFrame::create(gray, odometryDepth(images.depth));
     if (!previous) {
       if (sequence.hasGroundTruth()) T_wc = nearestPose(sequence.groundTruth(), images.stamp);
     } else {
@@ -110,50 +120,59 @@ int run(const Options& options) {
       const auto start = std::chrono::steady_clock::now();
       const bool ok = odometry->compute(current, previous, Rt);
       const auto stop = std::chrono::steady_clock::now();
-      compute_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
-      if (ok) {
-        // compute(src = current, dst = previous): p_previous = Rt * p_current, so Rt is
-        // T_previous_current and poses chain on the right.
-        Eigen::Matrix4d T_prev_cur;
-        cv::cv2eigen(Rt, T_prev_cur);
-        Eigen::Isometry3d step(T_prev_cur);
-        step.linear() = Eigen::Quaterniond(step.linear()).normalized().toRotationMatrix();
-        T_wc = T_wc * step;
-      } else {
-        ++failures;  // keep the last pose: a constant-position guess
-      }
+      run.compute_ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+      if (ok)
+        T_wc = T_wc * chainedStep(Rt);
+      else
+        ++run.failures;  // keep the last pose: a constant-position guess
     }
     previous = current;
     ply_slam::StampedPose pose;
     pose.stamp = images.stamp;
     pose.T_wc = T_wc;
-    trajectory.push_back(pose);
+    run.trajectory.push_back(pose);
   }
+  return run;
+}
 
-  const std::filesystem::path out_path(options.out);
-  if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
-  ply_slam::writeTumTrajectory(options.out, trajectory);
+void createParentFolder(const std::string& file) {
+  const std::filesystem::path path(file);
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+}
 
-  const double median_ms = ply_slam::median(compute_ms, 0.0);
-  const double mean_ms = compute_ms.empty()
-                             ? 0.0
-                             : std::accumulate(compute_ms.begin(), compute_ms.end(), 0.0) /
-                                   static_cast<double>(compute_ms.size());
+// Same key names as ply_slam_tum's summary.json so scripts read both alike.
+void writeTimingJson(const std::string& file, const OdometryRun& run, double median_ms,
+                     double mean_ms) {
+  createParentFolder(file);
+  ply_slam::AtomicFile out(file);
+  out.stream() << "{\n  \"method\": \"opencv_rgbd_odometry\",\n  \"frames\": "
+               << run.trajectory.size() << ",\n  \"failures\": " << run.failures
+               << ",\n  \"tracking_ms_median\": " << median_ms
+               << ",\n  \"tracking_ms_mean\": " << mean_ms << "\n}\n";
+  out.commit();
+}
+
+int run(const Options& options) {
+  const ply_slam::SystemConfig config = ply_slam::loadConfig(options.config);
+  const ply_slam::TumSequence sequence(options.sequence);
+  if (sequence.unassociatedRgbFrames() > 0) {
+    std::cerr << "note: " << sequence.unassociatedRgbFrames()
+              << " rgb frames have no depth image and are skipped\n";
+  }
+  const OdometryRun result = runOdometry(sequence, config.camera);
+  createParentFolder(options.out);
+  ply_slam::writeTumTrajectory(options.out, result.trajectory);
+
+  const std::vector<double>& ms = result.compute_ms;
+  const double median_ms = ply_slam::median(ms, 0.0);
+  const double mean_ms =
+      ms.empty() ? 0.0
+                 : std::accumulate(ms.begin(), ms.end(), 0.0) / static_cast<double>(ms.size());
   std::printf("RgbdOdometry: %zu frames, %d failed, odometry %.2f ms median, %.2f ms mean\n",
-              trajectory.size(), failures, median_ms, mean_ms);
+              result.trajectory.size(), result.failures, median_ms, mean_ms);
   std::printf("trajectory: %s\n", options.out.c_str());
-
-  if (!options.timing_json.empty()) {
-    const std::filesystem::path json_path(options.timing_json);
-    if (json_path.has_parent_path()) std::filesystem::create_directories(json_path.parent_path());
-    ply_slam::AtomicFile file(options.timing_json);
-    // Same key names as ply_slam_tum's summary.json so scripts read both alike.
-    file.stream() << "{\n  \"method\": \"opencv_rgbd_odometry\",\n  \"frames\": "
-                  << trajectory.size() << ",\n  \"failures\": " << failures
-                  << ",\n  \"tracking_ms_median\": " << median_ms
-                  << ",\n  \"tracking_ms_mean\": " << mean_ms << "\n}\n";
-    file.commit();
-  }
+  if (!options.timing_json.empty())
+    writeTimingJson(options.timing_json, result, median_ms, mean_ms);
   return 0;
 }
 

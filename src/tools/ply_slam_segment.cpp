@@ -46,9 +46,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     if (!size) throw UsageError("--input needs WxH, e.g. 640x480, got '" + value + "'");
     std::tie(o.params.input_width, o.params.input_height) = *size;
   } else if (arg == "--every") {
-    const std::optional<long> n = parseWholeNumber(value, 1, 100000);
-    if (!n) throw UsageError("--every needs a whole number in [1, 100000], got '" + value + "'");
-    o.every = static_cast<int>(*n);
+    o.every = static_cast<int>(wholeNumberArgument(arg, value, 1, 100000));
   } else {
     o.save_dir = value;
   }

@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
@@ -39,14 +38,6 @@ const char* const kUsage =
     "DIR]\n"
     "       ply_slam_synth --benchmark [--scene S] [--walkers N] [--frames N] [--noise]\n";
 
-long parseInteger(const std::string& option, const std::string& text, long min, long max) {
-  const std::optional<long> value = parseWholeNumber(text, min, max);
-  if (!value)
-    throw UsageError(option + " needs an integer in [" + std::to_string(min) + ", " +
-                     std::to_string(max) + "], got '" + text + "'");
-  return *value;
-}
-
 void setFlag(Options& o, const std::string& flag) {
   (flag == "--loop" ? o.synth.loop : flag == "--noise" ? o.synth.noise : o.benchmark) = true;
 }
@@ -59,12 +50,12 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
       throw UsageError("unknown scene '" + value + "' (office, lowtexture, corridor or ring)");
   } else if (arg == "--walkers") {
     o.synth.walkers =
-        static_cast<int>(parseInteger(arg, value, 0, Scene::kFirstObjectInstance - 1));
+        static_cast<int>(wholeNumberArgument(arg, value, 0, Scene::kFirstObjectInstance - 1));
   } else if (arg == "--frames") {
-    o.synth.frames = static_cast<int>(parseInteger(arg, value, 2, 1000000));
+    o.synth.frames = static_cast<int>(wholeNumberArgument(arg, value, 2, 1000000));
     o.frames_given = true;
   } else if (arg == "--seed") {
-    o.synth.seed = static_cast<uint64_t>(parseInteger(arg, value, 0, 2147483647L));
+    o.synth.seed = static_cast<uint64_t>(wholeNumberArgument(arg, value, 0, 2147483647L));
   } else if (arg == "--textures") {
     o.synth.texture_dir = value;
   }

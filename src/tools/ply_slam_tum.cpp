@@ -21,7 +21,6 @@
 
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
-#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
@@ -101,9 +100,7 @@ const char* const kUsage =
 constexpr int kExitEvaluationFailed = 3;
 
 long parseCount(const std::string& option, const std::string& text) {
-  const std::optional<long> value = parseWholeNumber(text, 0, 1000000000L);
-  if (!value) throw UsageError(option + " needs a whole number >= 0, got '" + text + "'");
-  return *value;
+  return wholeNumberArgument(option, text, 0, 1000000000L, "a whole number >= 0");
 }
 
 void setOption(Options& o, const std::string& arg, const std::string& value) {
@@ -538,7 +535,7 @@ class TumRun {
   int run() {
     trackFrames();
     finishMapping();
-    writeTrajectories();
+    writeTrackingOutputs();
     Json json = summarise();
     finishMapsAndPlot(json);
     writeSummary(json);
@@ -553,7 +550,8 @@ class TumRun {
   void saveImage(size_t i, const RgbdImages& images, const FrameResult& r);
   void takeMapped(const std::vector<MappedKeyFrame>& mapped);
   void finishMapping();
-  void writeTrajectories();
+  // timing.csv, the trajectories and, with --save-map, the map.
+  void writeTrackingOutputs();
   Json summarise();
   void finishMapsAndPlot(Json& json);
   void writeSummary(Json& json);
@@ -691,10 +689,10 @@ void TumRun::finishMapping() {
   } catch (const std::exception& e) {
     if (failure_.empty()) failure_ = e.what();
   }
-  outputs_.attempt([&] { writeTextFileAtomically((out_ / "timing.csv").string(), timing_.str()); });
 }
 
-void TumRun::writeTrajectories() {
+void TumRun::writeTrackingOutputs() {
+  outputs_.attempt([&] { writeTextFileAtomically((out_ / "timing.csv").string(), timing_.str()); });
   trajectory_ = system_->cameraTrajectory();
   outputs_.attempt(
       [&] { writeTumTrajectory((out_ / "CameraTrajectory.txt").string(), trajectory_); });

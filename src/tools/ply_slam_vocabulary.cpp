@@ -21,7 +21,6 @@
 
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
-#include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/features/line_extractor.h"
@@ -53,14 +52,6 @@ struct Options {
   long keyframes = 2000;
 };
 
-long wholeNumber(const std::string& option, const std::string& text, long min, long max) {
-  const std::optional<long> value = parseWholeNumber(text, min, max);
-  if (!value)
-    throw UsageError(option + " needs a whole number in [" + std::to_string(min) + ", " +
-                     std::to_string(max) + "], got '" + text + "'");
-  return *value;
-}
-
 void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (arg == "--images") {
     o.images = value;
@@ -72,21 +63,21 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
   } else if (arg == "--config") {
     o.config = value;
   } else if (arg == "--k") {
-    o.vocabulary.branching = static_cast<int>(wholeNumber(arg, value, 2, 64));
+    o.vocabulary.branching = static_cast<int>(wholeNumberArgument(arg, value, 2, 64));
   } else if (arg == "--levels") {
-    o.vocabulary.levels = static_cast<int>(wholeNumber(arg, value, 1, 10));
+    o.vocabulary.levels = static_cast<int>(wholeNumberArgument(arg, value, 1, 10));
   } else if (arg == "--max-features") {
-    o.max_features = wholeNumber(arg, value, 1, 100000);
+    o.max_features = wholeNumberArgument(arg, value, 1, 100000);
   } else if (arg == "--seed") {
-    o.vocabulary.seed = static_cast<uint64_t>(wholeNumber(arg, value, 0, 1L << 62));
+    o.vocabulary.seed = static_cast<uint64_t>(wholeNumberArgument(arg, value, 0, 1L << 62));
   } else if (arg == "--video-step") {
-    o.video_step = static_cast<int>(wholeNumber(arg, value, 1, 100000));
+    o.video_step = static_cast<int>(wholeNumberArgument(arg, value, 1, 100000));
   } else if (arg == "--orb-vocabulary") {
     o.orb_vocabulary = value;
   } else if (arg == "--lbd-vocabulary") {
     o.lbd_vocabulary = value;
   } else if (arg == "--keyframes") {
-    o.keyframes = wholeNumber(arg, value, 1, 1000000);
+    o.keyframes = wholeNumberArgument(arg, value, 1, 1000000);
   } else {
     throw UsageError("unknown option " + arg);
   }

@@ -3,6 +3,7 @@
 #include "ply_slam/common/ceres_solver_options.h"
 #include "ply_slam/common/point_residual.h"
 #include "ply_slam/common/se3_params.h"
+#include "ply_slam/features/line_distance.h"
 
 #include <ceres/ceres.h>
 
@@ -54,7 +55,7 @@ struct FixedLineCost {
       *out = T(PointResidual::kBehindCameraResidual);
       return;
     }
-    *out = (T(obs.line.x()) * uv[0] + T(obs.line.y()) * uv[1] + T(obs.line.z())) * T(scale);
+    *out = lineDistance(obs.line, uv[0], uv[1]) * T(scale);
   }
 
   template <typename T>
@@ -95,8 +96,8 @@ double PoseOptimizer::squaredLineError(const LineObservation& o,
   const Eigen::Vector3d ps = T_cw * o.start, pe = T_cw * o.end;
   if (!PointResidual::inFront(ps) || !PointResidual::inFront(pe))
     return std::numeric_limits<double>::infinity();
-  const double es = o.line.dot(camera_.project(ps).homogeneous());
-  const double ee = o.line.dot(camera_.project(pe).homogeneous());
+  const double es = lineDistance(o.line, camera_.project(ps));
+  const double ee = lineDistance(o.line, camera_.project(pe));
   return (es * es + ee * ee) / (o.pixel_sigma * o.pixel_sigma);
 }
 

@@ -30,6 +30,11 @@ struct CommandLine {
   void parse(int argc, char** argv) const;
 };
 
+// The whole number `text` gives for `option`, within [min, max]; otherwise a UsageError
+// "OPTION needs REQUIREMENT, got 'TEXT'", REQUIREMENT by default "a whole number in [MIN, MAX]".
+long wholeNumberArgument(const std::string& option, const std::string& text, long min, long max,
+                         const std::string& requirement = "");
+
 // A tool's main: `run` parses the command line and does the work. A UsageError is reported as
 // "TOOL: what" and `usage_text` on stderr, exit code 2; any other exception as "TOOL: what",
 // exit code 1.

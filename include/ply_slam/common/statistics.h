@@ -6,8 +6,8 @@
 
 namespace ply_slam {
 
-// The one place order statistics are computed (issue #18: the tools and nodes had three
-// different medians).
+// The one place order statistics are computed: every median and percentile of the tools and
+// nodes comes from here.
 
 // The k-th smallest of `values` (k from 0, below values.size()): a value of the sample itself.
 inline double kthSmallest(std::vector<double> values, size_t k) {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "ply_slam/common/measured_point_noise.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/dynamic/delaunay_consistency_options.h"
 
@@ -38,7 +39,7 @@ struct FeatureCorrespondence {
 class DelaunayConsistency {
  public:
   DelaunayConsistency(const PinholeCamera& camera, const DelaunayConsistencyOptions& params)
-      : camera_(camera), params_(params) {}
+      : noise_(camera, params.pixel_sigma), params_(params) {}
 
   // The camera's motion fitted to the static scene (previous -> current) and how much larger
   // than modelled the static features' noise was in this frame (>= 1).
@@ -98,14 +99,11 @@ class DelaunayConsistency {
   std::vector<bool> carriedByStaticMotion(const std::vector<FeatureCorrespondence>& features,
                                           std::vector<bool> inlier, StaticFit& fit) const;
 
-  // Variance of a back-projected point along unit direction d: depth noise along its ray,
-  // pixel noise across it.
-  double varianceAlong(const Eigen::Vector3d& p, const Eigen::Vector3d& d) const;
   // Least-squares rigid motion previous -> current of the features flagged in `use`.
   Eigen::Isometry3d rigidMotion(const std::vector<FeatureCorrespondence>& features,
                                 const std::vector<bool>& use) const;
 
-  PinholeCamera camera_;
+  MeasuredPointNoise noise_;  // of the features, with dynamic.pixel_sigma
   DelaunayConsistencyOptions params_;
 };
 

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/eval/rigid_alignment.h"  // the ATE aligns with alignRigid
 
 namespace ply_slam {
 
@@ -24,13 +25,6 @@ struct RpeResult {
 
 // The angle of a rotation, degrees (through AngleAxis: exact also for tiny angles).
 double rotationAngleDeg(const Eigen::Matrix3d& R);
-
-// The rotation nearest to m in the Frobenius norm (SVD; a reflection is never returned).
-Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& m);
-
-// Closed-form rigid alignment (Horn / Umeyama, no scale) minimising sum |gt - T est|^2.
-Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
-                             const std::vector<Eigen::Vector3d>& gt);
 
 // Absolute trajectory error, TUM definition: associate stamps within max_dt, align, RMSE etc.
 // Throws std::runtime_error when fewer than 3 pairs associate.

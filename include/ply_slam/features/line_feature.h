@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>  // homogeneous(), cross()
 
+#include "ply_slam/features/line_distance.h"
+
 namespace ply_slam {
 
 // One 2D line segment of an image. Oriented by its edge's polarity: walking from start to end,
@@ -20,7 +22,7 @@ struct LineFeature {
     const Eigen::Vector3d l = start.homogeneous().cross(end.homogeneous());
     return l / l.head<2>().norm();
   }
-  double distance(const Eigen::Vector2d& p) const { return line().dot(p.homogeneous()); }
+  double distance(const Eigen::Vector2d& p) const { return lineDistance(line(), p); }
 };
 
 }  // namespace ply_slam

@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "ply_slam/common/measured_point_noise.h"
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_3d.h"
 #include "ply_slam/features/line_depth_refiner.h"
@@ -43,10 +44,12 @@ class LineFitter {
   Line3D fitPoints(const std::vector<Eigen::Vector3d>& points,
                    const std::vector<Eigen::Matrix3d>& covariances, int num_samples) const;
 
-  // Σ = J Λ Jᵀ of the point back-projected from undistorted pixel uv with depth z.
+  // Σ = J Λ Jᵀ of the point back-projected from undistorted pixel uv with depth z
+  // (MeasuredPointNoise with lines.sigma_px).
   Eigen::Matrix3d sampleCovariance(const Eigen::Vector2d& uv, double z) const;
-  // Squared Mahalanobis distance of p (covariance cov) to the line through a with direction d.
-  static double mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& cov,
+  // Squared Mahalanobis distance of p to the line through a with direction d, given p's
+  // information matrix info = Σ⁻¹ (the RANSAC and refit inlier test of fitPoints).
+  static double mahalanobisToLine(const Eigen::Vector3d& p, const Eigen::Matrix3d& info,
                                   const Eigen::Vector3d& a, const Eigen::Vector3d& d);
   // L_avg = ceil(mean 2D length) of a frame's segments.
   static int averageLength(const std::vector<LineFeature>& lines);
@@ -62,6 +65,7 @@ class LineFitter {
 
   LineOptions params_;
   PinholeCamera camera_;
+  MeasuredPointNoise noise_;  // of the samples, with lines.sigma_px
   RegisteredDepth depth_;
   LineDepthRefiner refiner_;
 };

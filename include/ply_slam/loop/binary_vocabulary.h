@@ -47,8 +47,6 @@ class BinaryVocabulary {
   // The word of one descriptor; `node` (if given) gets its ancestor at depth `node_depth`.
   WordId word(const uint8_t* descriptor, NodeId* node = nullptr, int node_depth = 0) const;
 
-  static double score(const BowVector& a, const BowVector& b) { return bowScore(a, b); }
-
   bool empty() const { return data_.numNodes() == 0; }
   DescriptorKind kind() const { return data_.kind; }
   int branching() const { return data_.branching; }

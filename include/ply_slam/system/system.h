@@ -1,7 +1,9 @@
 #pragma once
 
+#include <future>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 
@@ -127,7 +129,28 @@ class System {
   const SystemConfig& config() const { return config_; }
 
  private:
-  void validate(const RgbdImages& images) const;
+  // Lines detected on a second thread beside ORB (PAPER.md §3.1), and the time it took.
+  struct DetectedLines {
+    std::vector<LineFeature> lines;
+    double ms = 0.0;
+  };
+
+  // Throws InvalidFrame for images or instance masks the system cannot use.
+  void validate(const RgbdImages& images, const std::vector<Instance>& instances) const;
+  // Starts the line detection on its own thread (gray must outlive the future); an empty future
+  // when lines are disabled.
+  std::future<DetectedLines> detectLinesAside(const cv::Mat& gray) const;
+  // The frame's ORB points without the dynamic ones; the instances as judged into result.
+  Frame pointFrame(const RgbdImages& images, const cv::Mat& gray,
+                   const std::vector<Instance>& instances, FrameResult& result);
+  // Describes and fits the detected lines, drops those touching a dynamic instance and gives
+  // the rest to the frame.
+  void addLines(DetectedLines detected, const RgbdImages& images, const cv::Mat& gray, Frame& frame,
+                FrameResult& result);
+  // The frame's new keyframe to the mapping side: queued for its thread, or mapped in line with
+  // the map's lock released meanwhile (then a loop it closed moves the frame's pose too).
+  void handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mutex>& lock,
+                        FrameResult& result);
   // Judges the frame's features (PAPER.md §3.2), drops the dynamic ones, records the fates.
   void rejectDynamic(FrameFeatures& features, double stamp, const std::vector<Instance>& instances,
                      FrameResult& result);
