@@ -6,6 +6,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/features2d.hpp>
+#include <unordered_set>
 
 namespace ply_slam {
 namespace {
@@ -21,6 +22,19 @@ PoseOptimizerParams optimizerParams(const TrackingOptions& t) {
 
 double rotationAngleDeg(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI;
+}
+
+// The landmarks (points or lines) of the keyframes, each once, not bad, in keyframe order.
+template <typename Landmark>
+std::vector<std::shared_ptr<Landmark>> landmarksOf(
+    const std::vector<KeyFrame*>& keyframes,
+    std::vector<std::shared_ptr<Landmark>> KeyFrame::*member) {
+  std::vector<std::shared_ptr<Landmark>> out;
+  std::unordered_set<const Landmark*> seen;
+  for (const KeyFrame* kf : keyframes)
+    for (const auto& l : kf->*member)
+      if (l && !l->bad && seen.insert(l.get()).second) out.push_back(l);
+  return out;
 }
 
 }  // namespace
@@ -51,6 +65,7 @@ Tracker::Tracker(const PinholeCamera& camera, const TrackingOptions& tracking,
 
 TrackingResult Tracker::track(Frame& frame) {
   TrackingResult result;
+  projected_.clear();
   if (state_ == TrackingState::kNotInitialised) {
     if (initialise(frame)) {
       result.method = "init";
@@ -167,11 +182,11 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   params.max_distance = options_.max_descriptor_distance;
   params.nn_ratio = options_.nn_ratio;
   frame.clearMatches();
-  int matches = matcher_.match(frame, points, &levels, params);
+  int matches = matcher_.match(frame, points, &levels, params, &projected_);
   if (matches < 2 * options_.min_tracked_points) {
     frame.clearMatches();
     params.radius_px *= 2;  // fast motion: a wider window
-    matches = matcher_.match(frame, points, &levels, params);
+    matches = matcher_.match(frame, points, &levels, params, &projected_);
   }
   const int line_matches = lines_.enabled ? matchLines(frame, local_lines_) : 0;
   if (matches + line_matches < options_.min_tracked_points) return false;
@@ -279,23 +294,9 @@ void Tracker::updateLocalMap(const Frame& frame) {
       std::find(chosen.begin(), chosen.end(), last_keyframe_.get()) == chosen.end())
     chosen.push_back(last_keyframe_.get());
 
-  local_points_.clear();
-  for (KeyFrame* kf : chosen) {
-    for (const auto& p : kf->map_points) {
-      if (!p || p->bad || p->local_map_frame == frame.id) continue;
-      p->local_map_frame = frame.id;
-      local_points_.push_back(p);
-    }
-  }
+  local_points_ = landmarksOf(chosen, &KeyFrame::map_points);
   local_lines_.clear();
-  if (!lines_.enabled) return;
-  for (KeyFrame* kf : chosen) {
-    for (const auto& l : kf->map_lines) {
-      if (!l || l->bad || l->local_map_frame == frame.id) continue;
-      l->local_map_frame = frame.id;
-      local_lines_.push_back(l);
-    }
-  }
+  if (lines_.enabled) local_lines_ = landmarksOf(chosen, &KeyFrame::map_lines);
 }
 
 int Tracker::matchLines(Frame& frame,
@@ -328,7 +329,7 @@ int Tracker::trackLocalMap(Frame& frame) {
   std::vector<std::shared_ptr<MapPoint>> candidates;
   candidates.reserve(local_points_.size());
   for (const auto& p : local_points_)
-    if (p->last_projected_frame != frame.id) candidates.push_back(p);
+    if (!projected_.count(p.get())) candidates.push_back(p);
   matcher_.match(frame, candidates, nullptr, params);
   if (lines_.enabled) matchLines(frame, local_lines_);  // again, with the refined pose
   return optimizePose(frame);

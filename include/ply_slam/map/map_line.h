@@ -17,9 +17,8 @@ struct MapLine {
   double end_weight = 0.0;
   cv::Mat descriptor;  // 1x32 CV_8U LBD
   long first_keyframe_id = 0;
-  int observations = 0;       // keyframes that observe it
-  int found = 0;              // frames in which it was matched as an inlier
-  long local_map_frame = -1;  // frame id whose local map holds it (deduplication)
+  int observations = 0;  // keyframes that observe it
+  int found = 0;         // frames in which it was matched as an inlier
   bool bad = false;
 
   // Distance (m) of p to the infinite line through start and end.

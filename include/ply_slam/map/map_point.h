@@ -26,8 +26,6 @@ struct MapPoint {
   int visible = 0;                  // frames in whose frustum it projected
   int found = 0;                    // frames in which it was matched as an inlier
   long first_keyframe_id = 0;
-  long last_projected_frame = -1;  // frame id it was last projected into (no double work)
-  long local_map_frame = -1;       // frame id whose local map holds it (deduplication)
   bool bad = false;
   std::shared_ptr<MapPoint> replaced_by;  // set when merged into a duplicate of itself
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <unordered_set>
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
@@ -24,14 +25,17 @@ struct ProjectionMatchParams {
 // expected pyramid level of each point; otherwise the level is predicted from distance.
 // Features that already hold a landmark are left alone. A landmark behind something nearer
 // in the frame's depth image (a person in front of the wall) is neither searched for nor
-// counted as visible: it was not in view. Returns the number of new matches.
+// counted as visible: it was not in view. Returns the number of new matches. `projected`
+// (optional) collects the landmarks that passed the view gates, matched or not, so that a
+// later pass over the same frame need not project them again.
 class ProjectionMatcher {
  public:
   ProjectionMatcher(const PinholeCamera& camera, double log_scale, int num_levels)
       : camera_(camera), depth_(camera), log_scale_(log_scale), num_levels_(num_levels) {}
 
   int match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
-            const std::vector<int>* levels, const ProjectionMatchParams& params) const;
+            const std::vector<int>* levels, const ProjectionMatchParams& params,
+            std::unordered_set<const MapPoint*>* projected = nullptr) const;
 
  private:
   // Something in the depth image lies clearly in front of the landmark at pc.

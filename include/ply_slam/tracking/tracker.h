@@ -3,6 +3,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "ply_slam/common/camera_velocity.h"
@@ -106,6 +107,9 @@ class Tracker {
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
+  // Landmarks the motion-model search projected into the frame being tracked: the local-map
+  // search skips them. Tracker scratch, cleared per frame (landmarks hold no tracker state).
+  std::unordered_set<const MapPoint*> projected_;
   PlaceCandidates place_candidates_;
   bool localisation_only_ = false;
 };
