@@ -90,6 +90,7 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
 
 void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
   const Stopwatch watch;
+  const ThreadCpuStopwatch cpu;
   KeyFramePacket packet;
   try {
     packet = fromMsg(*msg);
@@ -112,7 +113,7 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
   if (dense_) dense_->push(shared);
   if (missed > 0) onMissed(missed, "keyframe messages");
   publishMap(msg->header.stamp);
-  noteCallbackMs(watch.elapsedMs());
+  noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
 }
 
 // What the tracking process's mapping side changed: frames hanging from erased keyframes move to
@@ -121,6 +122,7 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
 // BA moves keyframes by millimetres).
 void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   const Stopwatch watch;
+  const ThreadCpuStopwatch cpu;
   MapUpdate update;
   try {
     update = fromMsg(*msg);
@@ -147,7 +149,7 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   if (dense_) dense_->follow(update);
   if (missed > 0) onMissed(missed, "map updates");
   publishMap(msg->header.stamp);
-  noteCallbackMs(watch.elapsedMs());
+  noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
 }
 
 void MappingNode::onMissed(uint64_t missed, const std::string& what) {
@@ -235,9 +237,10 @@ std::string MappingNode::partialReason(bool dense) const {
   return reason;
 }
 
-void MappingNode::noteCallbackMs(double ms) {
+void MappingNode::noteCallbackMs(double ms, double cpu_ms) {
   std::lock_guard<std::mutex> lock(mutex_);
   longest_callback_ms_ = std::max(longest_callback_ms_, ms);
+  longest_callback_cpu_ms_ = std::max(longest_callback_cpu_ms_, cpu_ms);
 }
 
 AnchoredTrajectory::KeyFramePoses MappingNode::anchorPoses() const {
@@ -343,7 +346,8 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
                        std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
                        " (" + std::to_string(map_updates_) + " map updates applied, " +
                        std::to_string(loop_updates_) + " after a loop closure; longest keyframe " +
-                       "or map-update callback " + std::to_string(longest_callback_ms_) + " ms)";
+                       "or map-update callback " + std::to_string(longest_callback_ms_) + " ms, " +
+                       std::to_string(longest_callback_cpu_ms_) + " ms of CPU)";
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();

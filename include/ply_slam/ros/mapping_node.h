@@ -60,7 +60,7 @@ class MappingNode {
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
   Trajectory cameraTrajectory() const;
   // Callbacks run one at a time: the longest is how long the tracker's messages may wait.
-  void noteCallbackMs(double ms);
+  void noteCallbackMs(double ms, double cpu_ms);  // wall-clock and thread CPU
   bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   // Asks the tracker for the map file in `folder`; throws std::runtime_error saying why not.
@@ -83,7 +83,7 @@ class MappingNode {
   const MappingNodeOptions options_;  // read-only after construction
 
   // Guards the map's copy and what says how whole it is: store_, camera_trajectory_,
-  // map_updates_, loop_updates_, longest_callback_ms_, the two message sequences,
+  // map_updates_, loop_updates_, the longest callback times, the two message sequences,
   // resend_requested_, dense_keyframes_, dense_missing_ and T_map_world_.
   std::mutex mutex_;
   MapStore store_;
@@ -92,7 +92,7 @@ class MappingNode {
   AnchoredTrajectory camera_trajectory_;
   static constexpr long kWorld = -1;
   size_t map_updates_ = 0, loop_updates_ = 0;
-  double longest_callback_ms_ = 0.0;
+  double longest_callback_ms_ = 0.0, longest_callback_cpu_ms_ = 0.0;
   BadInputLog bad_input_;  // locks itself
 
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
