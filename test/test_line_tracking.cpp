@@ -15,6 +15,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/mapping/landmark_creator.h"
 #include "ply_slam/system/system.h"
 #include "ply_slam/tracking/pose_optimizer.h"
 #include "ply_slam/tracking/tracker.h"
@@ -279,7 +280,8 @@ TEST(LineTracking, SegmentsShorterThanAPixelAreNotMatched) {
   };
   const auto lineInliers = [&](bool shorten) {
     Map map;
-    Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map, orb.scales());
+    LandmarkCreator mapping(config.camera, config.tracking.max_point_depth, config.lines, map);
+    Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map, mapping);
     for (size_t i = 0; i < 4; ++i) {
       Frame f = frame(i);
       EXPECT_EQ(tracker.track(f).state, TrackingState::kOk) << "frame " << i;

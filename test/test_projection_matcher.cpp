@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -45,16 +46,18 @@ TEST(ProjectionMatcher, OccludedLandmarksAreNotVisible) {
   frame.features.depth_image.colRange(0, images.depth.cols / 2).setTo(0.4f);
   const ProjectionMatcher matcher(config.camera, std::log(config.orb.scale_factor),
                                   config.orb.num_levels);
-  matcher.match(frame, points, nullptr, {});
+  ProjectionRecord record;
+  matcher.match(frame, points, nullptr, {}, record);
+  const std::set<const MapPoint*> visible(record.visible.begin(), record.visible.end());
 
   int left = 0, left_visible = 0, right = 0, right_visible = 0, right_matched = 0;
   for (const auto& p : points) {
     const bool on_left = config.camera.project(p->position).x() < images.depth.cols / 2 - 10;
     const bool on_right = config.camera.project(p->position).x() > images.depth.cols / 2 + 10;
     left += on_left;
-    left_visible += on_left && p->visible > 0;
+    left_visible += on_left && visible.count(p.get());
     right += on_right;
-    right_visible += on_right && p->visible > 0;
+    right_visible += on_right && visible.count(p.get());
   }
   for (size_t i = 0; i < frame.map_points.size(); ++i) {
     if (!frame.map_points[i]) continue;

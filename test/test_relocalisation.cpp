@@ -9,6 +9,7 @@
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/mapping/landmark_creator.h"
 #include "ply_slam/system/system.h"
 #include "ply_slam/tracking/tracker.h"
 #include "shared_data.h"
@@ -77,8 +78,8 @@ TEST(Relocalisation, TriesOnlyTheDatabasesCandidates) {
   const TumSequence sequence(folder);
   Map map;
   OrbExtractor extractor(config.orb);
-  Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map,
-                  extractor.scales());
+  LandmarkCreator mapping(config.camera, config.tracking.max_point_depth, config.lines, map);
+  Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map, mapping);
   long offered = 0;
   tracker.setPlaceCandidates([&](const Frame&) {
     ++offered;

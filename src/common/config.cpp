@@ -134,6 +134,7 @@ MapperOptions mapperOptions(const SystemConfig& config) {
   o.loop_correction = config.loop_correction;
   o.orb = config.orb;
   o.lines = config.lines;
+  o.max_point_depth = config.tracking.max_point_depth;
   o.mask_dilation_px = config.dynamic.mask_dilation_px;
   return o;
 }

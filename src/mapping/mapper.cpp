@@ -10,6 +10,7 @@ Mapper::Mapper(const PinholeCamera& camera, const MapperOptions& options, Map& m
                bool wait_for_global_ba)
     : options_(options),
       map_(map),
+      creator_(camera, options.max_point_depth, options.lines, map),
       fuser_(camera, options.orb, options.local),
       bundle_adjuster_(camera, options.local),
       point_culler_(options.culling.points),

@@ -25,8 +25,9 @@ System::System(const SystemConfig& config, MappingMode mode)
       extractor_(config.orb),
       rejector_(config.dynamic, config.camera),
       memory_(config.dynamic.carry_frames),
-      tracker_(config.camera, config.tracking, config.orb, config.lines, map_, extractor_.scales()),
-      mapper_(config.camera, mapperOptions(config), map_, mode == MappingMode::kInline) {
+      mapper_(config.camera, mapperOptions(config), map_, mode == MappingMode::kInline),
+      tracker_(config.camera, config.tracking, config.orb, config.lines, map_,
+               mapper_.landmarkSink()) {
   if (config_.lines.enabled) {
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);

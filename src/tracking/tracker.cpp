@@ -52,20 +52,21 @@ const char* toString(TrackingState state) {
 }
 
 Tracker::Tracker(const PinholeCamera& camera, const TrackingOptions& tracking,
-                 const OrbOptions& orb, const LineOptions& lines, Map& map,
-                 const std::vector<double>& scales)
+                 const OrbOptions& orb, const LineOptions& lines, const Map& map,
+                 LandmarkSink& mapping)
     : camera_(camera),
       options_(tracking),
       lines_(lines),
       map_(map),
-      scales_(scales),
+      mapping_(mapping),
       optimizer_(camera, optimizerParams(tracking)),
       matcher_(camera_, std::log(orb.scale_factor), orb.num_levels),
       line_matcher_(lines, camera) {}
 
 TrackingResult Tracker::track(Frame& frame) {
   TrackingResult result;
-  projected_.clear();
+  record_.projected.clear();
+  record_.visible.clear();
   if (state_ == TrackingState::kNotInitialised) {
     if (initialise(frame)) {
       result.method = "init";
@@ -109,13 +110,13 @@ TrackingResult Tracker::track(Frame& frame) {
       has_velocity_ = state_ == TrackingState::kOk && dt > 0.0 && dt <= options_.max_velocity_gap_s;
       if (has_velocity_) velocity_ = CameraVelocity::between(last_frame_->T_cw, frame.T_cw, dt);
       state_ = TrackingState::kOk;
-      updatePointStatistics(frame);
+      unlinkOutliers(frame);
       // Localising in a loaded map leaves its geometry as it was saved.
-      if (!localisation_only_) fuseLineFits(frame);
+      mapping_.recordTracked(frame, !localisation_only_);
       result.inliers = inliers;
       result.line_inliers = frame.numLineMatches();
       if (needKeyFrame(frame, inliers)) {
-        createKeyFrame(frame);
+        last_keyframe_ = mapping_.addKeyFrame(frame);
         result.new_keyframe = last_keyframe_;
       }
     } else {
@@ -123,6 +124,7 @@ TrackingResult Tracker::track(Frame& frame) {
       has_velocity_ = false;
     }
   }
+  mapping_.countVisible(record_.visible);
   frame.features.depth_image.release();  // keyframes and the last frame need no image
   result.state = state_;
   result.T_cw = frame.T_cw;
@@ -159,7 +161,7 @@ bool Tracker::initialise(Frame& frame) {
   for (size_t i = 0; i < frame.features.size(); ++i) with_depth += frame.features.hasDepth(i);
   if (with_depth < 2 * options_.min_tracked_points) return false;
   frame.T_cw = Eigen::Isometry3d::Identity();
-  createKeyFrame(frame);
+  last_keyframe_ = mapping_.addKeyFrame(frame);
   state_ = TrackingState::kOk;
   has_velocity_ = false;
   return true;
@@ -182,11 +184,11 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   params.max_distance = options_.max_descriptor_distance;
   params.nn_ratio = options_.nn_ratio;
   frame.clearMatches();
-  int matches = matcher_.match(frame, points, &levels, params, &projected_);
+  int matches = matcher_.match(frame, points, &levels, params, record_);
   if (matches < 2 * options_.min_tracked_points) {
     frame.clearMatches();
     params.radius_px *= 2;  // fast motion: a wider window
-    matches = matcher_.match(frame, points, &levels, params, &projected_);
+    matches = matcher_.match(frame, points, &levels, params, record_);
   }
   const int line_matches = lines_.enabled ? matchLines(frame, local_lines_) : 0;
   if (matches + line_matches < options_.min_tracked_points) return false;
@@ -329,8 +331,8 @@ int Tracker::trackLocalMap(Frame& frame) {
   std::vector<std::shared_ptr<MapPoint>> candidates;
   candidates.reserve(local_points_.size());
   for (const auto& p : local_points_)
-    if (!projected_.count(p.get())) candidates.push_back(p);
-  matcher_.match(frame, candidates, nullptr, params);
+    if (!record_.projected.count(p.get())) candidates.push_back(p);
+  matcher_.match(frame, candidates, nullptr, params, record_);
   if (lines_.enabled) matchLines(frame, local_lines_);  // again, with the refined pose
   return optimizePose(frame);
 }
@@ -380,52 +382,11 @@ int Tracker::optimizePose(Frame& frame) {
   return n;
 }
 
-void Tracker::updatePointStatistics(Frame& frame) {
-  for (size_t i = 0; i < frame.map_points.size(); ++i) {
-    auto& p = frame.map_points[i];
-    if (!p) continue;
-    if (frame.outlier[i]) {
-      p = nullptr;
-      continue;
-    }
-    ++p->found;
-  }
-  for (size_t i = 0; i < frame.map_lines.size(); ++i) {
-    auto& l = frame.map_lines[i];
-    if (!l) continue;
-    if (frame.line_outlier[i]) {
-      l = nullptr;
-      continue;
-    }
-    ++l->found;
-  }
-  // The mapping side retires the points these counts show unreliable (MapPointCuller).
-}
-
-void Tracker::fuseLineFits(const Frame& frame) {
-  const DepthNoiseModel& noise = camera_.depth_noise;
-  const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
-  const double min_cos = std::cos(lines_.match_angle_deg * M_PI / 180.0);
-  for (size_t i = 0; i < frame.map_lines.size(); ++i) {
-    const Line3D& fit = frame.lines.lines3d[i];
-    if (!frame.map_lines[i] || !fit.valid) continue;
-    MapLine& l = *frame.map_lines[i];
-    const Eigen::Vector3d s = T_wc * fit.start, e = T_wc * fit.end;
-    // Only a fit of the same 3D line: a match to a parallel edge a few pixels away (the other
-    // side of a desk leg) passes the 2D tests but lies centimetres off, and a short fit across
-    // the line can have both ends near it.
-    if (l.distanceToLine(s) > noise.surfaceGap(fit.start.z()) ||
-        l.distanceToLine(e) > noise.surfaceGap(fit.end.z()) ||
-        std::abs((e - s).normalized().dot((l.end - l.start).normalized())) < min_cos)
-      continue;
-    fuseFit(l, fit, T_wc);
-  }
-}
-
-void Tracker::fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const {
-  const DepthNoiseModel& noise = camera_.depth_noise;
-  line.fuse(T_wc * fit.start, T_wc * fit.end, 1.0 / noise.variance(fit.start.z()),
-            1.0 / noise.variance(fit.end.z()));
+void Tracker::unlinkOutliers(Frame& frame) const {
+  for (size_t i = 0; i < frame.map_points.size(); ++i)
+    if (frame.outlier[i]) frame.map_points[i] = nullptr;
+  for (size_t i = 0; i < frame.map_lines.size(); ++i)
+    if (frame.line_outlier[i]) frame.map_lines[i] = nullptr;
 }
 
 bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
@@ -438,72 +399,6 @@ bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
   const Eigen::Isometry3d motion = last_keyframe_->T_cw * frame.T_cw.inverse();
   return motion.translation().norm() > t.keyframe_translation ||
          rotationAngleDeg(motion) > t.keyframe_rotation_deg;
-}
-
-void Tracker::createKeyFrame(Frame& frame) {
-  auto kf = std::make_shared<KeyFrame>();
-  kf->frame_id = frame.id;
-  kf->stamp = frame.stamp;
-  kf->T_cw = frame.T_cw;
-  kf->features = frame.features;
-  kf->features.depth_image.release();  // the image stays with the frame only while it is tracked
-  kf->map_points.resize(frame.features.size());
-  map_.addKeyFrame(kf);
-
-  const auto& f = frame.features;
-  const auto& cam = camera_;
-  const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
-  const Eigen::Vector3d centre = T_wc.translation();
-  const double last_scale = scales_.back();
-  for (size_t i = 0; i < f.size(); ++i) {
-    auto& p = frame.map_points[i];
-    const bool has_depth = f.hasDepth(i) && f.depth[i] <= options_.max_point_depth;
-    if (p && !frame.outlier[i]) {
-      map_.addObservation(*kf, i, p);
-      if (has_depth) {
-        // Average the landmark with this keyframe's depth measurement.
-        const double z = f.depth[i];
-        const double lateral = z * f.scale(i) / cam.fx;
-        p->fuse(T_wc * cam.backProject(f.undistorted[i], z),
-                1.0 / (cam.depth_noise.variance(z) + lateral * lateral));
-      }
-      continue;
-    }
-    if (!has_depth) continue;
-    const double z = f.depth[i];
-    const Eigen::Vector3d world = T_wc * cam.backProject(f.undistorted[i], z);
-    auto point = map_.createMapPoint(world, f.descriptors.row(static_cast<int>(i)), kf->id);
-    const Eigen::Vector3d ray = world - centre;
-    point->normal = ray.normalized();
-    point->max_distance = ray.norm() * f.scale(i);
-    point->min_distance = point->max_distance / last_scale;
-    const double lateral = z * f.scale(i) / cam.fx;
-    point->position_weight = 1.0 / (cam.depth_noise.variance(z) + lateral * lateral);
-    map_.addObservation(*kf, i, point);
-    p = point;
-    frame.outlier[i] = false;
-  }
-  if (lines_.enabled) {
-    // Line landmarks: the matched ones gain an observation, the accepted 3D fits of the rest
-    // become new ones (world frame by the keyframe's pose).
-    kf->map_lines.resize(frame.lines.size());
-    for (size_t i = 0; i < frame.lines.size(); ++i) {
-      auto& l = frame.map_lines[i];
-      const Line3D& fit = frame.lines.lines3d[i];
-      if (l && !frame.line_outlier[i]) {
-        ++l->observations;
-        kf->map_lines[i] = l;
-        continue;
-      }
-      if (!fit.valid) continue;
-      l = map_.createMapLine(T_wc * fit.start, T_wc * fit.end, frame.lines.descriptor(i), kf->id);
-      fuseFit(*l, fit, T_wc);  // its first fit: the weights
-      l->observations = 1;
-      kf->map_lines[i] = l;
-      frame.line_outlier[i] = false;
-    }
-  }
-  last_keyframe_ = kf;
 }
 
 }  // namespace ply_slam

@@ -14,6 +14,7 @@
 #include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/global_bundle_adjustment.h"
 #include "ply_slam/mapping/key_frame_culler.h"
+#include "ply_slam/mapping/landmark_creator.h"
 #include "ply_slam/mapping/landmark_fuser.h"
 #include "ply_slam/mapping/local_bundle_adjuster.h"
 #include "ply_slam/mapping/loop_closer.h"
@@ -41,14 +42,17 @@ struct GlobalBundleAdjustmentCounts {
   double solve_ms = 0.0;
 };
 
-// The mapping side: joins each new keyframe's landmarks with its neighbours', refines the map
+// The mapping side, the only code that creates, changes or erases keyframes and landmarks:
+// makes keyframes and landmarks from what tracking measured (landmarkSink), joins each new
+// keyframe's landmarks with its neighbours', refines the map
 // around it (local bundle adjustment), retires landmarks that proved unreliable and keyframes
 // that became redundant and, with loop.enabled, recognises places and closes loops.
 //
 // Threads: insertKeyFrame, closeLoop, wholeMap and localUpdate are called from one thread (the
 // mapping side's, which may be the tracker's) and take map.updateMutex() themselves, step by
-// step; Ceres solves and line description run without it. recognise, places and
-// addLoadedKeyFrames expect the caller to hold it (or no other thread to run).
+// step; Ceres solves and line description run without it. recognise, places,
+// addLoadedKeyFrames and landmarkSink's calls (from the tracker's thread) expect the caller to
+// hold it (or no other thread to run).
 class Mapper {
  public:
   // Told of each move of the whole map, with the map's lock still held, so that whoever tracks
@@ -65,6 +69,8 @@ class Mapper {
          bool wait_for_global_ba = true);
 
   void setCorrectionListener(CorrectionListener listener) { listener_ = std::move(listener); }
+  // Where the tracker sends what it measured: new keyframes, found landmarks, line fits.
+  LandmarkSink& landmarkSink() { return creator_; }
   // The new keyframe and the first one are always kept, and those made after the new one.
   // Culled keyframes leave the place database too.
   KeyFrameInsertionStats insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe,
@@ -111,6 +117,7 @@ class Mapper {
 
   const MapperOptions options_;
   Map& map_;
+  LandmarkCreator creator_;
   LandmarkFuser fuser_;
   LocalBundleAdjuster bundle_adjuster_;
   MapPointCuller point_culler_;

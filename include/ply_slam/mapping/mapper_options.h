@@ -17,7 +17,8 @@ struct MapperOptions {
   LoopOptions loop;                       // place recognition (loop.enabled: at all)
   LoopCorrectionOptions loop_correction;  // closing an accepted loop
   OrbOptions orb;                         // the keyframes' pyramid: landmarks' predicted levels
-  LineOptions lines;                      // place recognition describes each keyframe's lines
+  LineOptions lines;  // new line landmarks (lines.enabled), place recognition's line words
+  double max_point_depth = 6.0;  // tracking.max_point_depth: deeper points make no landmark
   int mask_dilation_px = 5;  // dynamic.mask_dilation_px: instances left out of place recognition
 };
 

@@ -171,8 +171,8 @@ class System {
   DynamicRejector rejector_;
   InstanceMemory memory_;
   Map map_;
+  Mapper mapper_;  // before the tracker: it receives what the tracker measured
   Tracker tracker_;
-  Mapper mapper_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   // Tracked frames, each relative to the tracker's reference keyframe of its time; the

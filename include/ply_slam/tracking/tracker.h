@@ -3,7 +3,6 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
 #include "ply_slam/common/camera_velocity.h"
@@ -13,6 +12,7 @@
 #include "ply_slam/features/orb_options.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/tracking/frame.h"
+#include "ply_slam/tracking/landmark_sink.h"
 #include "ply_slam/tracking/pose_optimizer.h"
 #include "ply_slam/tracking/projection_matcher.h"
 #include "ply_slam/tracking/tracking_options.h"
@@ -33,13 +33,15 @@ struct TrackingResult {
 
 // Frame-to-local-map tracking of RGB-D frames: constant-velocity prediction and projection
 // matching, PnP-RANSAC when that fails, Ceres pose optimisation, local-map refinement,
-// keyframe decision and relocalisation against keyframes after a loss.
+// keyframe decision and relocalisation against keyframes after a loss. It reads the map and
+// writes nothing to it: keyframes, landmarks and their statistics are the mapping side's,
+// told through `mapping`.
 class Tracker {
  public:
-  // `orb`: the frames' pyramid (scales: its scale per level); `lines`: tracking with lines
-  // (lines.enabled) and how they are matched and weighted.
+  // `orb`: the frames' pyramid; `lines`: tracking with lines (lines.enabled) and how they are
+  // matched and weighted.
   Tracker(const PinholeCamera& camera, const TrackingOptions& tracking, const OrbOptions& orb,
-          const LineOptions& lines, Map& map, const std::vector<double>& scales);
+          const LineOptions& lines, const Map& map, LandmarkSink& mapping);
 
   // Keyframe ids to relocalise against, most promising first (a place-recognition database).
   using PlaceCandidates = std::function<std::vector<long>(const Frame&)>;
@@ -81,20 +83,14 @@ class Tracker {
   // (LineMatcher::matchSegments). Replaces the frame's line matches. Returns the matches.
   int matchLines(Frame& frame, const std::vector<std::shared_ptr<MapLine>>& candidates) const;
   bool needKeyFrame(const Frame& frame, int inliers) const;
-  void createKeyFrame(Frame& frame);
-  void updatePointStatistics(Frame& frame);
-  // Averages each accepted 3D fit of a tracked frame into the map line it matched as an
-  // inlier, where the fit lies on that line.
-  void fuseLineFits(const Frame& frame);
-  // Averages fit (camera frame at T_wc) into line, each end weighted by the inverse variance of
-  // its depth.
-  void fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const;
+  // A tracked frame keeps only its inlier matches.
+  void unlinkOutliers(Frame& frame) const;
 
   const PinholeCamera camera_;
   const TrackingOptions options_;
   const LineOptions lines_;
-  Map& map_;
-  std::vector<double> scales_;
+  const Map& map_;
+  LandmarkSink& mapping_;
   PoseOptimizer optimizer_;
   ProjectionMatcher matcher_;
   LineMatcher line_matcher_;
@@ -107,9 +103,10 @@ class Tracker {
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
-  // Landmarks the motion-model search projected into the frame being tracked: the local-map
-  // search skips them. Tracker scratch, cleared per frame (landmarks hold no tracker state).
-  std::unordered_set<const MapPoint*> projected_;
+  // What the projection passes over the frame being tracked saw: the local-map search skips
+  // what the motion model projected; the mapping side counts what was in view. Cleared per
+  // frame (landmarks hold no tracker state).
+  ProjectionRecord record_;
   PlaceCandidates place_candidates_;
   bool localisation_only_ = false;
 };

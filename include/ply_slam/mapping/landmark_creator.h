@@ -1,0 +1,48 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/features/line_options.h"
+#include "ply_slam/map/map.h"
+#include "ply_slam/tracking/landmark_sink.h"
+
+namespace ply_slam {
+
+// The mapping side's intake of what tracking measured (LandmarkSink): makes keyframes and their
+// new landmarks from tracked frames, averages each measurement into the landmark it matched
+// (a keyframe's depths into its points, every tracked frame's 3D line fits into its lines) and
+// keeps the visible / found counts that map-point culling reads.
+class LandmarkCreator : public LandmarkSink {
+ public:
+  // `max_point_depth` (tracking.max_point_depth): deeper features make no landmark and add no
+  // depth to one. `lines`: lines.enabled, and the angle a fit may differ from its line.
+  LandmarkCreator(const PinholeCamera& camera, double max_point_depth, const LineOptions& lines,
+                  Map& map);
+
+  void countVisible(const std::vector<MapPoint*>& in_view) override;
+  void recordTracked(const Frame& frame, bool fuse_lines) override;
+  std::shared_ptr<KeyFrame> addKeyFrame(Frame& frame) override;
+
+ private:
+  void addPoints(Frame& frame, KeyFrame& keyframe);
+  void addLines(Frame& frame, KeyFrame& keyframe);
+  // Averages each accepted 3D fit of a tracked frame into the map line it matched as an
+  // inlier, where the fit lies on that line.
+  void fuseLineFits(const Frame& frame) const;
+  // Averages fit (camera frame at T_wc) into line, each end weighted by the inverse variance of
+  // its depth.
+  void fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const;
+  // Inverse variance of a point at depth z seen at the scale of pyramid level `scale`: depth
+  // noise along the ray, the keypoint's footprint across it.
+  double pointWeight(double z, double scale) const;
+
+  const PinholeCamera camera_;
+  const double max_point_depth_;
+  const bool lines_enabled_;
+  const double line_match_angle_deg_;
+  Map& map_;
+};
+
+}  // namespace ply_slam
