@@ -144,6 +144,7 @@ def sequence_seeds(folder, config, out):
     update.points = k0.points
     update.lines = k0.lines
     update.erased_points = [3]
+    update.erased_lines = [1]
     update.erased_keyframes = [2]
     write(out, "fuzz_map_update_msg", name, serialize(update))
 

@@ -136,7 +136,7 @@ TEST(EraseKeyFrame, UnlinksEverythingAndKeepsTheTreeRooted) {
   EXPECT_EQ(h.keyframes_[3]->parent, h.keyframes_[2].get());
   EXPECT_EQ(h.keyframes_[4]->parent, h.keyframes_[2].get());
   expectConsistent(h.map_);
-  EXPECT_EQ(h.map_.removeBadPoints(), 4u);
+  EXPECT_EQ(h.map_.removeBadLandmarks(), 4u);
 }
 
 TEST(EraseKeyFrame, AChildSharingNothingGoesToTheGrandparent) {
@@ -202,13 +202,38 @@ TEST(RemoveBadPoints, NamesTheRemovedPointsOnce) {
   h.see(1, 0, 4);
   h.map_.erasePoint(h.points_[1]);
   h.map_.erasePoint(h.points_[3]);
-  EXPECT_EQ(h.map_.removeBadPoints(), 2u);
+  EXPECT_EQ(h.map_.removeBadLandmarks(), 2u);
   EXPECT_EQ(h.map_.takeRemovedPoints(), (std::vector<long>{h.points_[1]->id, h.points_[3]->id}));
   EXPECT_TRUE(h.map_.takeRemovedPoints().empty());
   const auto kept = h.map_.mapPoints();
   ASSERT_EQ(kept.size(), 2u);
   EXPECT_EQ(kept[0], h.points_[0]);  // the kept ones in their order
   EXPECT_EQ(kept[1], h.points_[2]);
+}
+
+// A line seen by two keyframes leaves the map when the second of them is erased, and is named
+// once, like a point.
+TEST(RemoveBadLandmarks, ALineGoesWithTheLastKeyFrameThatSawIt) {
+  HandMap h(4);
+  h.addChain(4);
+  for (int k = 0; k < 4; ++k) h.see(k, 0, 4);  // keyframes 1 and 2 stay erasable
+  const auto line = h.map_.createMapLine({0, 0, 3}, {1, 0, 3}, cv::Mat(), 1);
+  const auto kept_line = h.map_.createMapLine({0, 1, 3}, {1, 1, 3}, cv::Mat(), 0);
+  for (int k : {1, 2}) h.keyframes_[k]->map_lines[0] = line;
+  line->observations = 2;
+  h.keyframes_[0]->map_lines[0] = kept_line;
+  kept_line->observations = 1;
+  ASSERT_TRUE(h.map_.eraseKeyFrame(*h.keyframes_[1], 2));
+  EXPECT_EQ(h.map_.removeBadLandmarks(), 0u);  // keyframe 2 still sees it
+  ASSERT_TRUE(h.map_.eraseKeyFrame(*h.keyframes_[2], 2));
+  EXPECT_TRUE(line->bad);
+  EXPECT_EQ(h.map_.removeBadLandmarks(), 1u);
+  EXPECT_EQ(h.map_.takeRemovedLines(), std::vector<long>{line->id});
+  EXPECT_TRUE(h.map_.takeRemovedLines().empty());
+  EXPECT_TRUE(h.map_.takeRemovedPoints().empty());
+  const auto lines = h.map_.mapLines();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0], kept_line);
 }
 
 // Five keyframes: points 0-9 seen by all, 10-14 by keyframes 0 and 1 only, 15-19 by 3 and 4

@@ -86,6 +86,17 @@ TEST(MapStore, ForgetsErasedPoints) {
   EXPECT_EQ(store.points().count(11), 1u);
 }
 
+TEST(MapStore, ForgetsErasedLines) {
+  MapStore store;
+  store.insert(packet(0, 1.0, 0.0));
+  store.insert(packet(1, 2.0, 1.0));
+  MapUpdate update;
+  update.erased_lines = {0, 55};  // 55 is unknown: ignored
+  store.apply(update);
+  ASSERT_EQ(store.lines().size(), 1u);
+  EXPECT_EQ(store.lines().count(1), 1u);
+}
+
 TEST(MapStore, SavesEverythingItHolds) {
   MapStore store;
   store.insert(packet(0, 1.0, 0.0));

@@ -30,6 +30,7 @@ TEST_P(MapStoreFollowsSystem, SamePointsAndKeyFramesAsTheMap) {
   PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
   PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
   config.dense.enabled = false;
+  config.lines.enabled = true;  // line landmarks must follow too
   System system(config, GetParam());
   const TumSequence sequence(folder);
   MapStore store;
@@ -60,6 +61,11 @@ TEST_P(MapStoreFollowsSystem, SamePointsAndKeyFramesAsTheMap) {
   for (const auto& kf : system.map().keyFrames()) keyframes_in_map.insert(kf->id);
   for (const auto& [id, kf] : store.keyFrames()) keyframes_in_store.insert(id);
   EXPECT_EQ(keyframes_in_store, keyframes_in_map);
+  std::set<long> lines_in_map, lines_in_store;
+  for (const auto& l : system.map().mapLines()) lines_in_map.insert(l->id);
+  for (const auto& [id, l] : store.lines()) lines_in_store.insert(id);
+  EXPECT_GT(lines_in_map.size(), 0u);
+  EXPECT_EQ(lines_in_store, lines_in_map);
   // The copy's poses are the map's.
   for (const auto& kf : system.map().keyFrames())
     EXPECT_TRUE(store.keyFrames().at(kf->id).T_wc.isApprox(kf->T_wc(), 1e-12)) << kf->id;

@@ -93,19 +93,34 @@ void Map::replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<
   loser->replaced_by = winner;
 }
 
-size_t Map::removeBadPoints() {
+namespace {
+
+// Moves the bad landmarks out of `landmarks` (order kept) and appends their ids to `removed`.
+template <typename Landmark>
+size_t removeBad(std::vector<std::shared_ptr<Landmark>>& landmarks, std::vector<long>& removed) {
+  const auto bad = std::stable_partition(landmarks.begin(), landmarks.end(),
+                                         [](const auto& l) { return !l->bad; });
+  for (auto it = bad; it != landmarks.end(); ++it) removed.push_back((*it)->id);
+  const size_t count = static_cast<size_t>(landmarks.end() - bad);
+  landmarks.erase(bad, landmarks.end());
+  return count;
+}
+
+}  // namespace
+
+size_t Map::removeBadLandmarks() {
   std::lock_guard<std::mutex> lock(mutex_);
-  const size_t before = points_.size();
-  const auto bad = std::stable_partition(
-      points_.begin(), points_.end(), [](const std::shared_ptr<MapPoint>& p) { return !p->bad; });
-  for (auto it = bad; it != points_.end(); ++it) removed_points_.push_back((*it)->id);
-  points_.erase(bad, points_.end());
-  return before - points_.size();
+  return removeBad(points_, removed_points_) + removeBad(lines_, removed_lines_);
 }
 
 std::vector<long> Map::takeRemovedPoints() {
   std::lock_guard<std::mutex> lock(mutex_);
   return std::exchange(removed_points_, {});
+}
+
+std::vector<long> Map::takeRemovedLines() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::exchange(removed_lines_, {});
 }
 
 void Map::erasePoint(const std::shared_ptr<MapPoint>& point) {

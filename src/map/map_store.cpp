@@ -41,6 +41,7 @@ void MapStore::apply(const MapUpdate& update) {
   for (const auto& p : update.points) points_[p.id] = p;
   for (const auto& l : update.lines) lines_[l.id] = l;
   for (long id : update.erased_points) points_.erase(id);
+  for (long id : update.erased_lines) lines_.erase(id);
   for (long id : update.erased_keyframes) keyframes_.erase(id);
 }
 

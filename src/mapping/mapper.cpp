@@ -53,7 +53,7 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   stats.culled_keyframes = keyframe_culler_.cull(map_, *keyframe, keep ? keep() : std::set<long>{});
   if (loop_closer_)
     for (long id : stats.culled_keyframes) loop_closer_->removeKeyFrame(id);
-  map_.removeBadPoints();
+  map_.removeBadLandmarks();
   return stats;
 }
 
@@ -94,7 +94,7 @@ std::optional<Eigen::Isometry3d> Mapper::writeBackSolvedGlobal() {
   const std::optional<BundleWindow> solved = global_ba_.takeSolved();
   if (!solved) return std::nullopt;
   const Eigen::Isometry3d moved = global_ba_.writeBack(map_, *solved);
-  map_.removeBadPoints();
+  map_.removeBadLandmarks();
   ++global_ba_applied_;
   tell(moved);
   return moved;

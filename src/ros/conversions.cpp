@@ -301,6 +301,7 @@ MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
   m.lines = toMsgs<Line3DMsg>(u.lines);
   m.erased_keyframes.assign(u.erased_keyframes.begin(), u.erased_keyframes.end());
   m.erased_points.assign(u.erased_points.begin(), u.erased_points.end());
+  m.erased_lines.assign(u.erased_lines.begin(), u.erased_lines.end());
   m.whole_map = u.whole_map;
   return m;
 }
@@ -313,6 +314,7 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.lines = fromMsgs<LandmarkLine>(m.lines);
   u.erased_keyframes.assign(m.erased_keyframes.begin(), m.erased_keyframes.end());
   u.erased_points.assign(m.erased_points.begin(), m.erased_points.end());
+  u.erased_lines.assign(m.erased_lines.begin(), m.erased_lines.end());
   u.whole_map = m.whole_map;
   return u;
 }

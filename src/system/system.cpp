@@ -192,6 +192,7 @@ MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
                          : mapper_.localUpdate(keyframe);
   update.erased_keyframes = mapped.culled_keyframes;
   update.erased_points = map_.takeRemovedPoints();
+  update.erased_lines = map_.takeRemovedLines();
   out.map_update = std::make_shared<const MapUpdate>(std::move(update));
   out.ms = mapping.elapsedMs();
   return out;

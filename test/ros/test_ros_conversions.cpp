@@ -203,6 +203,7 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   u.lines = {{5, {1, 1, 1}, {2, 2, 2}}};
   u.erased_keyframes = {2, 3};
   u.erased_points = {7, 8, 9};
+  u.erased_lines = {4, 5};
   u.whole_map = true;
   const MapUpdate v = fromMsg(throughWire(toMsg(u, "map")));
   EXPECT_EQ(v.stamp, u.stamp);
@@ -215,6 +216,7 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   EXPECT_EQ(v.lines[0].start, u.lines[0].start);
   EXPECT_EQ(v.erased_keyframes, (std::vector<long>{2, 3}));
   EXPECT_EQ(v.erased_points, (std::vector<long>{7, 8, 9}));
+  EXPECT_EQ(v.erased_lines, (std::vector<long>{4, 5}));
   EXPECT_TRUE(v.whole_map);
 }
 

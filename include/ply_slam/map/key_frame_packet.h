@@ -72,6 +72,8 @@ struct MapUpdate {
   // Point landmarks that left the map since the last update (culled, merged, dropped by BA):
   // without them a copy of the map keeps every point ever made.
   std::vector<long> erased_points;
+  // Line landmarks that left the map since the last update (every keyframe that saw them erased).
+  std::vector<long> erased_lines;
 };
 
 }  // namespace ply_slam

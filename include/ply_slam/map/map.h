@@ -32,11 +32,13 @@ class Map {
   // Merges `loser` into `winner` (two landmarks found to be one): every keyframe that saw the
   // loser sees the winner instead; the loser turns bad and points to its replacement.
   void replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<MapPoint>& winner);
-  // Drops points marked bad from the container (keyframes keep null-safe shared_ptrs) and
-  // notes their ids for takeRemovedPoints.
-  size_t removeBadPoints();
-  // The ids of the points removeBadPoints dropped since the last call (for MapUpdate).
+  // Drops the landmarks marked bad, points and lines, from the containers (keyframes keep
+  // null-safe shared_ptrs) and notes their ids for takeRemovedPoints / takeRemovedLines.
+  // Returns how many went.
+  size_t removeBadLandmarks();
+  // The ids of the points / lines removeBadLandmarks dropped since the last call (MapUpdate).
   std::vector<long> takeRemovedPoints();
+  std::vector<long> takeRemovedLines();
   // Turns a point bad and unlinks it from every keyframe that saw it, so that covisibility
   // counts only landmarks in use.
   void erasePoint(const std::shared_ptr<MapPoint>& point);
@@ -77,6 +79,7 @@ class Map {
   std::vector<std::shared_ptr<MapPoint>> points_;
   std::vector<std::shared_ptr<MapLine>> lines_;
   std::vector<long> removed_points_;
+  std::vector<long> removed_lines_;
   long next_line_id_ = 0;
   long next_point_id_ = 0;
   long next_keyframe_id_ = 0;

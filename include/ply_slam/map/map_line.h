@@ -8,7 +8,8 @@ namespace ply_slam {
 // A static 3D line segment landmark, created at a keyframe from an accepted 3D fit
 // (PAPER.md §3.1) moved into the world frame, matched by its LBD descriptor. Every later
 // tracked frame that matches it with an accepted fit of its own on the same 3D line averages
-// that fit in (Tracker), as map points average their depth measurements.
+// that fit in (LandmarkCreator, on the mapping side), as map points average their depth
+// measurements.
 struct MapLine {
   long id = 0;
   Eigen::Vector3d start = Eigen::Vector3d::Zero();  // world frame, m; the end seen at the 2D start
