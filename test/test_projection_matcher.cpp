@@ -46,9 +46,9 @@ TEST(ProjectionMatcher, OccludedLandmarksAreNotVisible) {
   frame.features.depth_image.colRange(0, images.depth.cols / 2).setTo(0.4f);
   const ProjectionMatcher matcher(config.camera, std::log(config.orb.scale_factor),
                                   config.orb.num_levels);
-  ProjectionRecord record;
-  matcher.match(frame, points, nullptr, {}, record);
-  const std::set<const MapPoint*> visible(record.visible.begin(), record.visible.end());
+  std::vector<MapPoint*> in_view;
+  matcher.match(frame, points, nullptr, {}, in_view);
+  const std::set<const MapPoint*> visible(in_view.begin(), in_view.end());
 
   int left = 0, left_visible = 0, right = 0, right_visible = 0, right_matched = 0;
   for (const auto& p : points) {

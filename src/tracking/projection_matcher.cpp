@@ -24,7 +24,8 @@ bool ProjectionMatcher::occluded(const Frame& frame, const Eigen::Vector2d& uv,
 
 int ProjectionMatcher::match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
                              const std::vector<int>* levels, const ProjectionMatchParams& params,
-                             ProjectionRecord& record) const {
+                             std::vector<MapPoint*>& in_view,
+                             std::unordered_set<const MapPoint*>* projected) const {
   const FrameFeatures& f = frame.features;
   const Eigen::Vector3d centre = frame.cameraCentre();
   // Best distance given to each feature in this pass: a better landmark takes a feature over.
@@ -50,9 +51,9 @@ int ProjectionMatcher::match(Frame& frame, const std::vector<std::shared_ptr<Map
       if (ray.dot(point->normal) < 0.5 * distance) continue;  // seen from > 60° off its normal
       level = point->predictLevel(distance, log_scale_, num_levels_);
     }
-    record.projected.insert(point.get());
+    if (projected) projected->insert(point.get());
     if (occluded(frame, uv, pc, params)) continue;
-    record.visible.push_back(point.get());
+    in_view.push_back(point.get());
 
     const double radius = params.radius_px * (*f.scales)[level];
     BestTwo found;

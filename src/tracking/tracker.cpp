@@ -65,8 +65,8 @@ Tracker::Tracker(const PinholeCamera& camera, const TrackingOptions& tracking,
 
 TrackingResult Tracker::track(Frame& frame) {
   TrackingResult result;
-  record_.projected.clear();
-  record_.visible.clear();
+  projected_.clear();
+  in_view_.clear();
   if (state_ == TrackingState::kNotInitialised) {
     if (initialise(frame)) {
       result.method = "init";
@@ -124,7 +124,7 @@ TrackingResult Tracker::track(Frame& frame) {
       has_velocity_ = false;
     }
   }
-  mapping_.countVisible(record_.visible);
+  mapping_.countVisible(in_view_);
   frame.features.depth_image.release();  // keyframes and the last frame need no image
   result.state = state_;
   result.T_cw = frame.T_cw;
@@ -184,11 +184,11 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   params.max_distance = options_.max_descriptor_distance;
   params.nn_ratio = options_.nn_ratio;
   frame.clearMatches();
-  int matches = matcher_.match(frame, points, &levels, params, record_);
+  int matches = matcher_.match(frame, points, &levels, params, in_view_, &projected_);
   if (matches < 2 * options_.min_tracked_points) {
     frame.clearMatches();
     params.radius_px *= 2;  // fast motion: a wider window
-    matches = matcher_.match(frame, points, &levels, params, record_);
+    matches = matcher_.match(frame, points, &levels, params, in_view_, &projected_);
   }
   const int line_matches = lines_.enabled ? matchLines(frame, local_lines_) : 0;
   if (matches + line_matches < options_.min_tracked_points) return false;
@@ -325,14 +325,12 @@ int Tracker::trackLocalMap(Frame& frame) {
   params.radius_px = options_.search_radius_px / 3.0;  // the pose is already refined
   params.max_distance = options_.max_descriptor_distance;
   params.nn_ratio = options_.nn_ratio;
-  // Outliers of the first estimate may be matched again to a better landmark.
-  for (size_t i = 0; i < frame.map_points.size(); ++i)
-    if (frame.outlier[i]) frame.map_points[i] = nullptr;
+  unlinkOutliers(frame);  // outliers of the first estimate may match a better landmark
   std::vector<std::shared_ptr<MapPoint>> candidates;
   candidates.reserve(local_points_.size());
   for (const auto& p : local_points_)
-    if (!record_.projected.count(p.get())) candidates.push_back(p);
-  matcher_.match(frame, candidates, nullptr, params, record_);
+    if (!projected_.count(p.get())) candidates.push_back(p);
+  matcher_.match(frame, candidates, nullptr, params, in_view_);
   if (lines_.enabled) matchLines(frame, local_lines_);  // again, with the refined pose
   return optimizePose(frame);
 }

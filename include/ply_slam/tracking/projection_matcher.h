@@ -20,21 +20,14 @@ struct ProjectionMatchParams {
   double depth_gate = 0.1;  // relative depth disagreement allowed (plus 5 cm)
 };
 
-// What the projection passes over one frame saw.
-struct ProjectionRecord {
-  // Landmarks that passed the view gates, matched or not: a later pass need not project them.
-  std::unordered_set<const MapPoint*> projected;
-  // Landmarks in view and not occluded, once per pass (the mapping side counts them visible).
-  std::vector<MapPoint*> visible;
-};
-
 // Matches landmarks to the frame's features by projecting them with frame.T_cw and searching
 // a window around the projection. `levels` (optional, parallel to `points`) fixes the
 // expected pyramid level of each point; otherwise the level is predicted from distance.
 // Features that already hold a landmark are left alone. A landmark behind something nearer
 // in the frame's depth image (a person in front of the wall) is neither searched for nor
-// recorded as visible: it was not in view. Returns the number of new matches; `record` collects
-// what this pass projected and saw in view.
+// appended to `in_view` (the landmarks in view, which the mapping side counts visible). Returns
+// the number of new matches. `projected` (optional) collects the landmarks that passed the view
+// gates, matched or not, so that a later pass over the same frame need not project them again.
 class ProjectionMatcher {
  public:
   ProjectionMatcher(const PinholeCamera& camera, double log_scale, int num_levels)
@@ -42,7 +35,8 @@ class ProjectionMatcher {
 
   int match(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& points,
             const std::vector<int>* levels, const ProjectionMatchParams& params,
-            ProjectionRecord& record) const;
+            std::vector<MapPoint*>& in_view,
+            std::unordered_set<const MapPoint*>* projected = nullptr) const;
 
  private:
   // Something in the depth image lies clearly in front of the landmark at pc.

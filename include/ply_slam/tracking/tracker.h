@@ -3,6 +3,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "ply_slam/common/camera_velocity.h"
@@ -103,10 +104,11 @@ class Tracker {
   std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
-  // What the projection passes over the frame being tracked saw: the local-map search skips
-  // what the motion model projected; the mapping side counts what was in view. Cleared per
-  // frame (landmarks hold no tracker state).
-  ProjectionRecord record_;
+  // Of the frame being tracked, cleared per frame (landmarks hold no tracker state): what the
+  // motion model projected (the local-map search skips it) and what the projection passes saw
+  // in view (the mapping side counts it visible).
+  std::unordered_set<const MapPoint*> projected_;
+  std::vector<MapPoint*> in_view_;
   PlaceCandidates place_candidates_;
   bool localisation_only_ = false;
 };
