@@ -30,6 +30,7 @@ sensor_msgs::PointCloud2 toDenseCloudMsg(const DenseCloud& cloud, const std_msgs
   sensor_msgs::PointCloud2 msg;
   msg.header = header;
   setFields(msg, true, cloud.size());
+  if (cloud.empty()) return msg;  // an iterator over no data dereferences a null pointer
   sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z");
   sensor_msgs::PointCloud2Iterator<uint8_t> rgb(msg, "rgb");  // bytes b g r a
   sensor_msgs::PointCloud2Iterator<uint32_t> label(msg, "label");
@@ -84,6 +85,7 @@ sensor_msgs::PointCloud2 toVoxelCloudMsg(const std::vector<SemanticOctree::Voxel
   sensor_msgs::PointCloud2 msg;
   msg.header = header;
   setFields(msg, false, voxels.size());
+  if (voxels.empty()) return msg;
   sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z");
   sensor_msgs::PointCloud2Iterator<uint8_t> rgb(msg, "rgb");
   for (const auto& v : voxels) {

@@ -13,6 +13,7 @@ sensor_msgs::PointCloud2 toMapPointsMsg(const std::map<long, LandmarkPoint>& poi
   sensor_msgs::PointCloud2Modifier modifier(cloud);
   modifier.setPointCloud2FieldsByString(1, "xyz");
   modifier.resize(points.size());
+  if (points.empty()) return cloud;  // an iterator over no data dereferences a null pointer
   sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z");
   for (const auto& [id, p] : points) {
     *x = static_cast<float>(p.position.x());
