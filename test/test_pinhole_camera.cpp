@@ -156,5 +156,31 @@ TEST(MeasuredPointNoise, VarianceAlongIsTheCovarianceProjected) {
     }
 }
 
+// On a sloping surface the depth follows the pixel: Σ is J diag(σ², σ², σ_Z²) Jᵀ with J the
+// derivative of P(u, v, ε) = backProject((u, v), Z0 + s·(u - u0, v - v0) + ε), by differences.
+TEST(MeasuredPointNoise, ASlopeCarriesThePixelErrorIntoTheDepth) {
+  const PinholeCamera camera = makeFr1Camera();
+  const double sigma = 0.8;
+  const MeasuredPointNoise noise(camera, sigma);
+  const Eigen::Vector3d p(0.8, -0.3, 4.0);
+  const Eigen::Vector2d uv0 = camera.project(p), slope(0.04, -0.01);
+  auto point = [&](double u, double v, double e) {
+    return camera.backProject(Eigen::Vector2d(u, v),
+                              p.z() + slope.dot(Eigen::Vector2d(u, v) - uv0) + e);
+  };
+  const double h = 1e-4;
+  Eigen::Matrix3d J;
+  J.col(0) = (point(uv0.x() + h, uv0.y(), 0) - point(uv0.x() - h, uv0.y(), 0)) / (2 * h);
+  J.col(1) = (point(uv0.x(), uv0.y() + h, 0) - point(uv0.x(), uv0.y() - h, 0)) / (2 * h);
+  J.col(2) = (point(uv0.x(), uv0.y(), h) - point(uv0.x(), uv0.y(), -h)) / (2 * h);
+  const Eigen::Vector3d lambda(sigma * sigma, sigma * sigma, camera.depth_noise.variance(p.z()));
+  const Eigen::Matrix3d expected = J * lambda.asDiagonal() * J.transpose();
+  EXPECT_LT((noise.covariance(p, slope) - expected).cwiseAbs().maxCoeff(), 1e-9);
+  // Along the ray 4 cm per px adds more than the Kinect's own depth noise at 4 m (2 cm).
+  const Eigen::Vector3d ray = p.normalized();
+  EXPECT_NEAR(noise.varianceAlong(p, ray, slope), ray.dot(expected * ray), 1e-9);
+  EXPECT_GT(noise.varianceAlong(p, ray, slope), 2 * noise.varianceAlong(p, ray));
+}
+
 }  // namespace
 }  // namespace ply_slam

@@ -35,8 +35,9 @@ DelaunayConsistency::Change DelaunayConsistency::residual(const FeatureCorrespon
   if (norm < 1e-12) return {0.0, 0.0};
   const Eigen::Vector3d d = r / norm;
   // The residual's variance along itself: both measurements' noise.
-  const double variance = noise_.varianceAlong(f.current, d) +
-                          noise_.varianceAlong(f.previous, motion.linear().transpose() * d);
+  const double variance =
+      noise_.varianceAlong(f.current, d, f.slope_current) +
+      noise_.varianceAlong(f.previous, motion.linear().transpose() * d, f.slope_previous);
   return {norm, norm / std::sqrt(variance)};
 }
 
@@ -48,9 +49,10 @@ DelaunayConsistency::Change DelaunayConsistency::edgeChange(const FeatureCorresp
   if (before < 1e-9 || after < 1e-9) return {0.0, 0.0};
   // The length's variance: both endpoints' noise along the edge, in both frames.
   const Eigen::Vector3d d0 = edge_before / before, d1 = edge_after / after;
-  const double variance = noise_.varianceAlong(a.previous, d0) +
-                          noise_.varianceAlong(b.previous, d0) +
-                          noise_.varianceAlong(a.current, d1) + noise_.varianceAlong(b.current, d1);
+  const double variance = noise_.varianceAlong(a.previous, d0, a.slope_previous) +
+                          noise_.varianceAlong(b.previous, d0, b.slope_previous) +
+                          noise_.varianceAlong(a.current, d1, a.slope_current) +
+                          noise_.varianceAlong(b.current, d1, b.slope_current);
   return {std::abs(after - before), std::abs(after - before) / std::sqrt(variance)};
 }
 

@@ -9,6 +9,7 @@
 #include "ply_slam/common/hamming.h"
 #include "ply_slam/dynamic/depth_surfaces.h"
 #include "ply_slam/features/best_two.h"
+#include "ply_slam/features/depth_slope.h"
 
 namespace ply_slam {
 namespace {
@@ -43,14 +44,15 @@ void DynamicRejector::remember(const FrameFeatures& current, double stamp,
   if (mode_ != DynamicMode::kGeometric && mode_ != DynamicMode::kFull) return;
   surface_age_ = rejection.surface_age;
   surface_candidates_ = rejection.surface_candidates;
-  earlier_.push_back({stamp, current});
+  earlier_.push_back({stamp, current, depthSlopes(current)});
   earlier_.back().features.depth_image.release();
   while (static_cast<int>(earlier_.size()) > params_.baseline_frames) earlier_.pop_front();
 }
 
 std::vector<FeatureCorrespondence> DynamicRejector::correspondences(
-    const FrameFeatures& prev, const FrameFeatures& current,
+    const Earlier& earlier, const FrameFeatures& current,
     const std::optional<Eigen::Isometry3d>& T_cur_prev, std::vector<size_t>& feature_of) const {
+  const FrameFeatures& prev = earlier.features;
   std::vector<FeatureCorrespondence> out;
   feature_of.clear();
   if (prev.size() == 0 || current.size() == 0) return out;
@@ -78,11 +80,13 @@ std::vector<FeatureCorrespondence> DynamicRejector::correspondences(
     const auto i1 = static_cast<size_t>(two.index);
     if (two.best < best[i1].distance) best[i1] = {two.best, j};
   }
+  const std::vector<Eigen::Vector2d> slopes = depthSlopes(current);
   for (size_t i = 0; i < current.size(); ++i) {
     if (best[i].distance == std::numeric_limits<int>::max() || !current.hasDepth(i)) continue;
     const size_t j = best[i].previous;
     out.push_back({current.undistorted[i], camera_.backProject(prev.undistorted[j], prev.depth[j]),
-                   camera_.backProject(current.undistorted[i], current.depth[i])});
+                   camera_.backProject(current.undistorted[i], current.depth[i]), earlier.slopes[j],
+                   slopes[i]});
     feature_of.push_back(i);
   }
   return out;
@@ -231,7 +235,7 @@ void DynamicRejector::judgeByMotion(const FrameFeatures& current, double stamp,
   if (!earlier_.empty()) {
     const Earlier& earlier = earlier_.front();
     if (velocity && stamp > earlier.stamp) T_cur_prev = velocity->over(stamp - earlier.stamp);
-    matched = correspondences(earlier.features, current, T_cur_prev, feature_of);
+    matched = correspondences(earlier, current, T_cur_prev, feature_of);
   }
   // Full mode labels features by the segmenter's instances, geometric mode by the depth
   // image's surfaces, judged as objects of unknown class.

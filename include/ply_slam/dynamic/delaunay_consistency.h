@@ -24,6 +24,9 @@ struct FeatureCorrespondence {
   Eigen::Vector2d pixel;     // current frame, undistorted
   Eigen::Vector3d previous;  // previous camera frame (m)
   Eigen::Vector3d current;   // current camera frame (m)
+  // The depth image's slope (dZ/du, dZ/dv, m/px) where each depth was read (depthSlopeAt).
+  Eigen::Vector2d slope_previous = Eigen::Vector2d::Zero();
+  Eigen::Vector2d slope_current = Eigen::Vector2d::Zero();
 };
 
 // The Delaunay topology check of PAPER.md §3.2: a triangle network over the matched features

@@ -69,8 +69,13 @@ class DynamicRejector {
   // Sets r.dynamic_mask from the moving instances or surfaces and drops the features on it.
   void dropWholeObjects(const FrameFeatures& current, const std::vector<Instance>& instances,
                         DynamicRejection& r) const;
+  struct Earlier {
+    double stamp;
+    FrameFeatures features;
+    std::vector<Eigen::Vector2d> slopes;  // depthSlopes(features), read before its depth image goes
+  };
   std::vector<FeatureCorrespondence> correspondences(
-      const FrameFeatures& previous, const FrameFeatures& current,
+      const Earlier& previous, const FrameFeatures& current,
       const std::optional<Eigen::Isometry3d>& T_cur_prev, std::vector<size_t>& feature_of) const;
   // The label of each matched feature (feature_of: its index in `current`) and each label's
   // class kind: the segmenter's instances (full mode) or the depth image's surfaces (geometric).
@@ -108,10 +113,6 @@ class DynamicRejector {
   PinholeCamera camera_;
   DynamicFeatureFilter filter_;
   std::set<std::string> active_, passive_;
-  struct Earlier {
-    double stamp;
-    FrameFeatures features;
-  };
   std::deque<Earlier> earlier_;  // the last baseline_frames frames, oldest first
   cv::Mat surface_age_;          // the last frame's DynamicRejection::surface_age
   cv::Mat surface_candidates_;   // and its surface_candidates
