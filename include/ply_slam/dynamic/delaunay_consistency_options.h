@@ -6,7 +6,7 @@ namespace ply_slam {
 struct DelaunayConsistencyOptions {
   double sigma_factor = 3.0;  // an edge is inconsistent when its length changes > k sigma
   double min_change = 0.01;   // m; and by at least this much (unmodelled errors)
-  double pixel_sigma = 1.0;   // px; image noise of a feature, beside the depth noise
+  double pixel_sigma = 1.0;   // px; a feature's pixel noise (its depth too, where depth slopes)
   // Features joined by consistent edges form rigid bodies; the largest (the static scene)
   // fixes the camera's motion. Only when it has fewer than 3 features to fit that motion by:
   // those of a body smaller than this share of the largest get weight 1.
