@@ -95,10 +95,6 @@ TEST(DelaunayConsistency, StaticSceneIsConsistent) {
 // A corridor 2 m wide seen along its length, every point static. The walls slope steeply in
 // the image (5 cm of depth per pixel at 5 m), so a keypoint found 0.7 px off reads its depth a
 // few centimetres off, along the ray, far beyond an exact sensor's depth noise.
-struct CorridorView {
-  std::vector<FeatureCorrespondence> features;
-};
-
 // Depth of the corridor (walls x = +-1 m, floor y = 1 m, ceiling y = -1.4 m, previous camera's
 // frame) along the ray of pixel (u, v) of a camera at T_prev_cam; 0 beyond 12 m.
 double corridorDepth(const PinholeCamera& cam, const Eigen::Isometry3d& T_prev_cam, double u,
@@ -114,13 +110,19 @@ double corridorDepth(const PinholeCamera& cam, const Eigen::Isometry3d& T_prev_c
   return t < 12.0 ? t : 0.0;  // ray z = 1 in the camera: t is the depth
 }
 
-CorridorView makeCorridorView(bool with_slopes, unsigned seed) {
+// The synthetic scenes' camera with their exact depth (quantised to 0.2 mm).
+PinholeCamera exactDepthCamera() {
+  PinholeCamera cam = syntheticCamera();
+  cam.depth_noise.alpha = 3e-7;
+  cam.depth_noise.gamma = 3.3e-9;
+  return cam;
+}
+
+std::vector<FeatureCorrespondence> corridorView(bool with_slopes, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pixel_u(5.0, 634.0), pixel_v(5.0, 474.0);
   std::normal_distribution<double> keypoint_error(0.0, 0.7);
-  PinholeCamera cam = syntheticCamera();
-  cam.depth_noise.alpha = 3e-7;  // the synthetic scenes' exact depth (quantised to 0.2 mm)
-  cam.depth_noise.gamma = 3.3e-9;
+  const PinholeCamera cam = exactDepthCamera();
   Eigen::Isometry3d T_prev_cur = Eigen::Isometry3d::Identity();  // walking forward, turning
   T_prev_cur.linear() = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitY()).matrix();
   T_prev_cur.translation() = Eigen::Vector3d(0.01, 0.0, 0.12);
@@ -137,8 +139,8 @@ CorridorView makeCorridorView(bool with_slopes, unsigned seed) {
     if (!with_slopes) slope.setZero();
     return z > 0.0;
   };
-  CorridorView view;
-  while (view.features.size() < 500) {
+  std::vector<FeatureCorrespondence> view;
+  while (view.size() < 500) {
     // A static point of the corridor, seen in the previous frame and in the current one.
     const Eigen::Vector2d uv_prev(pixel_u(rng), pixel_v(rng));
     const double z = corridorDepth(cam, identity, uv_prev.x(), uv_prev.y());
@@ -154,17 +156,14 @@ CorridorView makeCorridorView(bool with_slopes, unsigned seed) {
     if (!measure(identity, uv_prev + error_prev, f.previous, f.slope_previous)) continue;
     if (!measure(T_prev_cur, uv_cur + error_cur, f.current, f.slope_current)) continue;
     f.pixel = uv_cur + error_cur;
-    view.features.push_back(f);
+    view.push_back(f);
   }
   return view;
 }
 
 int flaggedInCorridor(bool with_slopes) {
-  PinholeCamera cam = syntheticCamera();
-  cam.depth_noise.alpha = 3e-7;
-  cam.depth_noise.gamma = 3.3e-9;
-  const CorridorView view = makeCorridorView(with_slopes, 7);
-  const auto w = DelaunayConsistency(cam, {}).weights(view.features, 640, 480);
+  const auto w =
+      DelaunayConsistency(exactDepthCamera(), {}).weights(corridorView(with_slopes, 7), 640, 480);
   return static_cast<int>(std::count_if(w.begin(), w.end(), [](double x) { return x > 0.5; }));
 }
 

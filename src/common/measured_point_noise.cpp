@@ -14,11 +14,9 @@ Eigen::Matrix3d MeasuredPointNoise::covariance(const Eigen::Vector3d& p,
   J << z / fx_, 0.0, p.x() / z,  //
       0.0, z / fy_, p.y() / z,   //
       0.0, 0.0, 1.0;
-  // (u, v, ε_Z) -> (u, v, Z): the depth follows the pixel along the slope.
-  Eigen::Matrix3d follow = Eigen::Matrix3d::Identity();
-  follow(2, 0) = slope.x();
-  follow(2, 1) = slope.y();
-  J = J * follow;
+  // The depth follows the pixel along the slope: dP/du gains (dP/dZ) s_u, dP/dv (dP/dZ) s_v.
+  J.col(0) += J.col(2) * slope.x();
+  J.col(1) += J.col(2) * slope.y();
   const double s2 = pixel_sigma_ * pixel_sigma_;
   const Eigen::Vector3d lambda(s2, s2, depth_noise_.variance(z));
   return J * lambda.asDiagonal() * J.transpose();

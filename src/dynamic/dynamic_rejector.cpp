@@ -80,13 +80,12 @@ std::vector<FeatureCorrespondence> DynamicRejector::correspondences(
     const auto i1 = static_cast<size_t>(two.index);
     if (two.best < best[i1].distance) best[i1] = {two.best, j};
   }
-  const std::vector<Eigen::Vector2d> slopes = depthSlopes(current);
   for (size_t i = 0; i < current.size(); ++i) {
     if (best[i].distance == std::numeric_limits<int>::max() || !current.hasDepth(i)) continue;
     const size_t j = best[i].previous;
     out.push_back({current.undistorted[i], camera_.backProject(prev.undistorted[j], prev.depth[j]),
                    camera_.backProject(current.undistorted[i], current.depth[i]), earlier.slopes[j],
-                   slopes[i]});
+                   depthSlopeOf(current, i)});
     feature_of.push_back(i);
   }
   return out;

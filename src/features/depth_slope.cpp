@@ -30,13 +30,15 @@ Eigen::Vector2d depthSlopeAt(const cv::Mat& depth_m, int u, int v) {
           gentlerSide(validDepth(depth_m, u, v - 1), centre, validDepth(depth_m, u, v + 1))};
 }
 
+Eigen::Vector2d depthSlopeOf(const FrameFeatures& features, size_t i) {
+  if (features.depth_image.empty()) return Eigen::Vector2d::Zero();
+  const cv::Point2f& raw = features.keypoints[i].pt;
+  return depthSlopeAt(features.depth_image, cvRound(raw.x), cvRound(raw.y));
+}
+
 std::vector<Eigen::Vector2d> depthSlopes(const FrameFeatures& features) {
-  std::vector<Eigen::Vector2d> slopes(features.size(), Eigen::Vector2d::Zero());
-  if (features.depth_image.empty()) return slopes;
-  for (size_t i = 0; i < features.size(); ++i) {
-    const cv::Point2f& raw = features.keypoints[i].pt;
-    slopes[i] = depthSlopeAt(features.depth_image, cvRound(raw.x), cvRound(raw.y));
-  }
+  std::vector<Eigen::Vector2d> slopes(features.size());
+  for (size_t i = 0; i < features.size(); ++i) slopes[i] = depthSlopeOf(features, i);
   return slopes;
 }
 

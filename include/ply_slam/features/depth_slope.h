@@ -15,8 +15,10 @@ namespace ply_slam {
 // depth by this much per px (MeasuredPointNoise).
 Eigen::Vector2d depthSlopeAt(const cv::Mat& depth_m, int u, int v);
 
-// The slope under each feature's raw keypoint, where its depth was read; zeros when the frame
+// The slope under feature i's raw keypoint, where its depth was read; zero when the frame
 // holds no depth image.
+Eigen::Vector2d depthSlopeOf(const FrameFeatures& features, size_t i);
+// depthSlopeOf every feature.
 std::vector<Eigen::Vector2d> depthSlopes(const FrameFeatures& features);
 
 }  // namespace ply_slam
