@@ -93,6 +93,34 @@ TEST(LoopGroundTruth, OverlapOfShiftedViewsOfAWall) {
   EXPECT_DOUBLE_EQ(viewOverlap(wallView(0, 0, 0), far, c, p), 0.0);
 }
 
+// A person 1 m in front of the camera over the left half of the image, in its depth and, when
+// `marked`, in its movers mask.
+GroundTruthView withPersonOnTheLeft(GroundTruthView view, bool marked) {
+  const cv::Rect left(0, 0, view.depth.cols / 2, view.depth.rows);
+  view.depth = view.depth.clone();  // the caller's view keeps its image
+  view.depth(left).setTo(1.0f);
+  if (marked) {
+    view.movers = cv::Mat::zeros(view.depth.size(), CV_8UC1);
+    view.movers(left).setTo(255);
+  }
+  return view;
+}
+
+TEST(LoopGroundTruth, PeopleAreNoPartOfThePlace) {
+  const PinholeCamera c = smallCamera();
+  LoopGroundTruthParams p;
+  const GroundTruthView wall = wallView(0, 0, 0);
+  // Unmarked, the person hides half of the wall in b, and in a stands where b sees the wall.
+  EXPECT_NEAR(viewOverlap(wall, withPersonOnTheLeft(wallView(1, 20, 0), false), c, p), 0.5, 0.02);
+  EXPECT_NEAR(viewOverlap(withPersonOnTheLeft(wall, false), wallView(1, 20, 0), c, p), 0.5, 0.02);
+  // Marked, those pixels take no part either way: what is left of the wall agrees everywhere.
+  EXPECT_NEAR(viewOverlap(wall, withPersonOnTheLeft(wallView(1, 20, 0), true), c, p), 1.0, 1e-9);
+  EXPECT_NEAR(viewOverlap(withPersonOnTheLeft(wall, true), wallView(1, 20, 0), c, p), 1.0, 1e-9);
+  // Points of a out of b's view still count against the overlap: of a's wall, a quarter is out of
+  // view, half lands on the person (no part), a quarter is seen.
+  EXPECT_NEAR(viewOverlap(wall, withPersonOnTheLeft(wallView(1, 20, 0.8), true), c, p), 0.5, 0.03);
+}
+
 TEST(LoopGroundTruth, TimeDistanceAngleAndOverlapAllCount) {
   const PinholeCamera c = smallCamera();
   LoopGroundTruthParams p;

@@ -6,6 +6,13 @@
 #include "ply_slam/eval/trajectory_metrics.h"
 
 namespace ply_slam {
+namespace {
+
+bool onMover(const cv::Mat& movers, int u, int v) {
+  return !movers.empty() && movers.at<uint8_t>(v, u) != 0;
+}
+
+}  // namespace
 
 double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
                    const LoopGroundTruthParams& params) {
@@ -14,13 +21,15 @@ double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const Pin
   for (int v = 0; v < a.depth.rows; v += params.pixel_step)
     for (int u = 0; u < a.depth.cols; u += params.pixel_step) {
       const float z = a.depth.at<float>(v, u);
-      if (!(z > 0.f)) continue;
-      ++valid;
+      if (!(z > 0.f) || onMover(a.movers, u, v)) continue;
       const Eigen::Vector3d p_b = T_ba * camera.backProject(Eigen::Vector2d(u, v), z);
-      if (p_b.z() <= 0.0) continue;
       const Eigen::Vector2d uv = camera.project(p_b);
-      if (!camera.inImage(uv)) continue;
-      const float z_b = b.depth.at<float>(static_cast<int>(uv.y()), static_cast<int>(uv.x()));
+      const bool in_view = p_b.z() > 0.0 && camera.inImage(uv);
+      const int u_b = static_cast<int>(uv.x()), v_b = static_cast<int>(uv.y());
+      if (in_view && onMover(b.movers, u_b, v_b)) continue;
+      ++valid;
+      if (!in_view) continue;
+      const float z_b = b.depth.at<float>(v_b, u_b);
       const double tolerance =
           std::max(params.depth_tolerance_m, params.depth_tolerance_ratio * p_b.z());
       seen += z_b > 0.f && std::abs(z_b - p_b.z()) < tolerance;

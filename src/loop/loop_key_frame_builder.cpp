@@ -49,6 +49,13 @@ LoopKeyFrame LoopKeyFrameBuilder::build(const KeyFramePacket& packet) const {
   return kf;
 }
 
+cv::Mat LoopKeyFrameBuilder::movers(const KeyFramePacket& packet) const {
+  std::vector<InstanceBox> boxes;
+  cv::Mat mask;
+  readLabels(packet, boxes, mask);
+  return mask;
+}
+
 void LoopKeyFrameBuilder::readLabels(const KeyFramePacket& packet, std::vector<InstanceBox>& boxes,
                                      cv::Mat& movers) const {
   if (packet.label_image.empty()) return;

@@ -126,6 +126,9 @@ class KeyFrameCollector {
     view.stamp = packet.stamp;
     cv::resize(packet.depth, view.depth, cv::Size(), 1.0 / kDepthFactor, 1.0 / kDepthFactor,
                cv::INTER_NEAREST);
+    const cv::Mat movers = builder_.movers(packet);
+    if (!movers.empty())
+      cv::resize(movers, view.movers, view.depth.size(), 0.0, 0.0, cv::INTER_NEAREST);
     views_.push_back(std::move(view));
   }
 
@@ -271,14 +274,45 @@ struct DecisionRow {
   bool correct = false, query_has_loop = false;
 };
 
+// One candidate of one query: its raw scores, the query's reference scores and the pair's
+// ground truth (candidates.csv: every selection rule can be judged from it).
+struct CandidateRow {
+  long query = 0, reference = -1, candidate = 0;
+  VariantScores reference_scores, raw;
+  int instance_matches = 0;
+  double gt_distance_m = 0.0, gt_angle_deg = 0.0;
+  bool correct = false, query_has_loop = false;
+};
+
 // What the detector did over the whole sequence.
 struct LoopRun {
   std::vector<DecisionRow> rows;  // the curves' decisions
+  std::vector<CandidateRow> candidate_rows;
   std::vector<AcceptedLoop> accepted;
   long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_false = 0;
   long judged = 0, candidates = 0, covisible = 0;  // queries with a reference; sums over queries
   std::vector<double> score_ms, check_ms;
 };
+
+void recordCandidates(const GroundTruthView& query, const LoopQueryScores& scores,
+                      const std::map<long, const GroundTruthView*>& by_id, const TruthTable& truth,
+                      std::vector<CandidateRow>& rows) {
+  for (const ScoredCandidate& c : scores.candidates) {
+    CandidateRow row;
+    row.query = query.id;
+    row.reference = scores.reference_id.value_or(-1);
+    row.reference_scores = scores.reference;
+    row.candidate = c.id;
+    row.raw = c.raw;
+    row.instance_matches = c.instance_matches;
+    const Eigen::Isometry3d T_qc = query.T_wc.inverse() * by_id.at(c.id)->T_wc;
+    row.gt_distance_m = T_qc.translation().norm();
+    row.gt_angle_deg = rotationAngleDeg(T_qc.linear());
+    row.correct = truth.pairs.count({query.id, c.id}) > 0;
+    row.query_has_loop = truth.queries.count(query.id) > 0;
+    rows.push_back(row);
+  }
+}
 
 // Every keyframe in order as a query: the curves' decisions, the loops accepted after alpha,
 // consistency and the geometric check, and the geometric check alone on each query's best
@@ -296,6 +330,7 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
     run.judged += d.scores.reference_id.has_value();
     run.candidates += static_cast<long>(d.scores.candidates.size());
     run.covisible += static_cast<long>(detector.keyFrame(view.id).covisibility.size());
+    recordCandidates(view, d.scores, by_id, truth, run.candidate_rows);
     for (size_t v = 0; v < kNumVariants; ++v) {
       const std::optional<Best> best = bestNormalised(d.scores, kVariants[v].score);
       if (!best) continue;
@@ -336,6 +371,22 @@ void writeDecisions(const fs::path& out, const std::vector<DecisionRow>& rows) {
     csv << r.query << ',' << kVariants[r.variant].name << ',' << r.candidate << ',' << r.normalised
         << ',' << r.correct << ',' << r.query_has_loop << ',' << r.gt_distance_m << ','
         << r.gt_angle_deg << '\n';
+  file.commit();
+}
+
+void writeCandidates(const fs::path& out, const std::vector<CandidateRow>& rows) {
+  AtomicFile file((out / "candidates.csv").string());
+  std::ostream& csv = file.stream();
+  csv << "query,reference,candidate,ref_orb,ref_lbd,ref_orb_lbd,ref_full,orb,lbd,orb_lbd,full,"
+         "instance_matches,true_loop,query_has_true_loop,gt_distance_m,gt_angle_deg\n"
+      << std::setprecision(6);
+  for (const CandidateRow& r : rows) {
+    const VariantScores& f = r.reference_scores;
+    csv << r.query << ',' << r.reference << ',' << r.candidate << ',' << f.points << ',' << f.lines
+        << ',' << f.point_line << ',' << f.full << ',' << r.raw.points << ',' << r.raw.lines << ','
+        << r.raw.point_line << ',' << r.raw.full << ',' << r.instance_matches << ',' << r.correct
+        << ',' << r.query_has_loop << ',' << r.gt_distance_m << ',' << r.gt_angle_deg << '\n';
+  }
   file.commit();
 }
 
@@ -507,6 +558,7 @@ int run(const Options& o) {
                             std::to_string(truth.queries.size()) + " queries with a true loop)";
   writeCurves(o.out, curves, title);
   writeDecisions(o.out, run.rows);
+  writeCandidates(o.out, run.candidate_rows);
   writeSummary(o.out, o, info, truth, run, curves, config.loop.min_normalised_score);
   long correct = 0;
   for (const AcceptedLoop& a : run.accepted) correct += a.correct;

@@ -14,6 +14,9 @@ namespace ply_slam {
 // points (every pixel_step-th pixel in both directions, valid depth) land inside the other's
 // image, in front of it, where the other's depth agrees within max(depth_tolerance_m,
 // depth_tolerance_ratio z) (so points hidden behind a wall or out of view do not count).
+// A place is its static scene: pixels on moving things (people) in either view take no part,
+// neither as a's points nor where they land on b (what a person hides in b is not known to be
+// seen or not).
 struct LoopGroundTruthParams {
   double min_gap_s = 10.0;
   double max_distance_m = 0.3;
@@ -29,11 +32,12 @@ struct GroundTruthView {
   long id = 0;
   double stamp = 0.0;
   Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();  // ground truth
-  cv::Mat depth;  // 32FC1 m, 0 = none; any size: `camera` must describe it
+  cv::Mat depth;   // 32FC1 m, 0 = none; any size: `camera` must describe it
+  cv::Mat movers;  // 8UC1 of depth's size, non-zero on moving things; empty = none
 };
 
-// The share of a's sampled valid depth points that b sees at the same depth (0 when a has
-// none).
+// The share of a's sampled valid depth points off the movers, landing off b's movers, that b
+// sees at the same depth (0 when a has none).
 double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
                    const LoopGroundTruthParams& params);
 

@@ -22,6 +22,9 @@ class LoopKeyFrameBuilder {
                       const LoopOptions& loop, int mask_dilation_px);
 
   LoopKeyFrame build(const KeyFramePacket& packet) const;
+  // The pixels build() leaves out: those of instances of moving classes, dilated (8UC1, non-zero
+  // on them; empty when there are none).
+  cv::Mat movers(const KeyFramePacket& packet) const;
 
  private:
   // The box of each labelled instance, and the pixels of those of moving classes, dilated
