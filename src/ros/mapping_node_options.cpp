@@ -18,11 +18,6 @@ Eigen::Isometry3d fromXyzYawPitchRoll(const std::vector<double>& v) {
   return T;
 }
 
-void readPeriod(const ros::NodeHandle& pnh, const std::string& name, double* seconds) {
-  readParam(pnh, name, seconds);
-  if (!(*seconds > 0.0)) badParam(name, "must be > 0 s");
-}
-
 }  // namespace
 
 MappingNodeOptions mappingNodeOptionsFromParams(const ros::NodeHandle& pnh) {

@@ -254,6 +254,7 @@ void TrackingNode::work() {
     }
     try {
       if (idle) {
+        sendPath();  // the last poses of a stream that stopped
         if (!system_) continue;
         const std::vector<MappedKeyFrame> mapped = system_->takeMapped();
         if (mapped.empty() && system_->mappingBacklog() == mapping_backlog_) continue;
@@ -337,22 +338,9 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
     pose.header = header;
     pose.pose = toPoseMsg(result.tracking.T_cw.inverse());
     pose_pub_.publish(pose);
-    // The path is for looking at: a pose every few cm or degrees, the most recent
-    // kMaxPathPoses of them, so that hours of tracking stay a message rviz can draw.
-    const Eigen::Isometry3d T_wc = result.tracking.T_cw.inverse();
-    const bool moved =
-        path_.poses.empty() || (T_wc.translation() - last_path_pose_.translation()).norm() > 0.01 ||
-        Eigen::AngleAxisd(T_wc.linear() * last_path_pose_.linear().transpose()).angle() >
-            1.0 * M_PI / 180.0;
-    if (moved) {
-      if (path_.poses.size() >= kMaxPathPoses)
-        path_.poses.erase(path_.poses.begin(), path_.poses.begin() + kMaxPathPoses / 2);
-      path_.header = header;
-      path_.poses.push_back(pose);
-      last_path_pose_ = T_wc;
-      path_pub_.publish(path_);
-    }
+    addToPath(pose, result.tracking.T_cw.inverse());
   }
+  sendPath();
   publishMapped(result.mapped);
   if (!options_.publish_images) return;
   std_msgs::Header image_header = rgb.header;
@@ -365,6 +353,34 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
         cv_bridge::CvImage(image_header, "bgr8",
                            drawSegmentationImage(images.rgb, instances, result.dynamic_instances))
             .toImageMsg());
+}
+
+// The path is for looking at: a pose every few cm or degrees, the most recent kMaxPathPoses of
+// them, so that hours of tracking stay a message rviz can draw.
+void TrackingNode::addToPath(const geometry_msgs::PoseStamped& pose,
+                             const Eigen::Isometry3d& T_wc) {
+  const bool moved =
+      path_.poses.empty() || (T_wc.translation() - last_path_pose_.translation()).norm() > 0.01 ||
+      Eigen::AngleAxisd(T_wc.linear() * last_path_pose_.linear().transpose()).angle() >
+          1.0 * M_PI / 180.0;
+  if (!moved) return;
+  if (path_.poses.size() >= kMaxPathPoses)
+    path_.poses.erase(path_.poses.begin(), path_.poses.begin() + kMaxPathPoses / 2);
+  path_.header = pose.header;
+  path_.poses.push_back(pose);
+  last_path_pose_ = T_wc;
+  path_unsent_ = true;
+}
+
+// The whole path, at most once per ~path_period: the first poses at once, later ones with the
+// first frame (or idle wake-up of the worker) after the period, so the last are not held back.
+void TrackingNode::sendPath() {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!path_unsent_ || (!path_sent_.isZero() && (now - path_sent_).toSec() < options_.path_period))
+    return;
+  path_pub_.publish(path_);
+  path_sent_ = now;
+  path_unsent_ = false;
 }
 
 // The mapping side's keyframes and map updates, in order (the worker's thread only: it numbers

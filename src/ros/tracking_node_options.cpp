@@ -27,6 +27,7 @@ TrackingNodeOptions trackingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   o.frame_queue_size = static_cast<size_t>(std::max(1, frame_queue_size));
   readParam(pnh, "world_frame", &o.world_frame);
   readParam(pnh, "publish_images", &o.publish_images);
+  readPeriod(pnh, "path_period", &o.path_period);
   readParam(pnh, "map", &o.map);
   readParam(pnh, "localisation_only", &o.localisation_only);
   readParam(pnh, "mapping_thread", &o.mapping_thread);

@@ -3,7 +3,8 @@
 at rate 1 into the running tracking_node + mapping_node, saves the trajectory through the
 mapper's service and checks: every frame synchronised and tracked, ATE within the allowed factor
 of the offline ply_slam_tum run on the same frames; the occupancy grid is published and saved in
-map_server's format."""
+map_server's format; ~path comes at most once per ~path_period and its last poses are not held
+back when the stream ends."""
 import os
 import shutil
 import subprocess
@@ -28,6 +29,7 @@ class BagReplay(unittest.TestCase):
         offline_frames, offline_ate = support.offline_run(sequence, os.path.join(work, "offline"))
 
         stats = support.StatsListener()
+        path = support.PathListener()
         support.wait_for_nodes()
         subprocess.run(["rosbag", "play", "--quiet", "--delay=1", "--rate=1", bag], check=True)
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= offline_frames, 30)
@@ -44,6 +46,7 @@ class BagReplay(unittest.TestCase):
         self.assertEqual(ate["pairs"], offline_frames)
         self.assertLessEqual(ate["rmse"], factor * offline_ate)
         support.check_grid(self, os.path.join(work, "saved_map"))
+        path.check(self, rospy.get_param("~path_period", 1.0))
 
 
 if __name__ == "__main__":

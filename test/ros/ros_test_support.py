@@ -1,6 +1,7 @@
 """Shared pieces of the rostest integration tests: where the shared data is, offline reference
 runs, bag conversion, the tracking node's statistics and the mapper's save service."""
 import json
+import math
 import os
 import subprocess
 import sys
@@ -10,6 +11,8 @@ import unittest
 
 import rospkg
 import rospy
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
 from roslib.packages import find_node
 from std_msgs.msg import String
 
@@ -18,6 +21,8 @@ STATS_TOPIC = "/ply_slam/tracking_node/stats"
 SAVE_TRAJECTORY = "/ply_slam/mapping_node/save_trajectory"
 SAVE_MAP = "/ply_slam/mapping_node/save_map"
 GRID_TOPIC = "/ply_slam/mapping_node/grid_map"
+PATH_TOPIC = "/ply_slam/tracking_node/path"
+POSE_TOPIC = "/ply_slam/tracking_node/pose"
 
 
 def shared_path(relative):
@@ -90,6 +95,67 @@ class StatsListener:
                 return True
             time.sleep(0.1)
         return condition(self)
+
+
+class PathListener:
+    """The tracking node's ~path messages (wall time received, the poses' stamps) and its ~pose
+    messages."""
+
+    def __init__(self):
+        self.paths = []
+        self.poses = []
+        self.path_sub = rospy.Subscriber(PATH_TOPIC, Path, self._on_path)
+        self.pose_sub = rospy.Subscriber(POSE_TOPIC, PoseStamped, self._on_pose)
+
+    def _on_path(self, msg):
+        self.paths.append((time.time(), [p.header.stamp.to_sec() for p in msg.poses]))
+
+    def _on_pose(self, msg):
+        self.poses.append(msg)
+
+    def expected_stamps(self, start):
+        """The poses the path keeps from the pose at `start` on (one it kept): each 1 cm or
+        1 degree from the last kept."""
+        kept, last = [], None
+        for msg in self.poses:
+            if msg.header.stamp.to_sec() < start:
+                continue
+            p, q = msg.pose.position, msg.pose.orientation
+            if last is not None:
+                (lp, lq) = last
+                moved = math.dist((p.x, p.y, p.z), (lp.x, lp.y, lp.z))
+                dot = abs(q.x * lq.x + q.y * lq.y + q.z * lq.z + q.w * lq.w)
+                turned = 2.0 * math.degrees(math.acos(min(1.0, dot)))
+                if moved <= 0.01 and turned <= 1.0:
+                    continue
+            kept.append(msg.header.stamp.to_sec())
+            last = (p, q)
+        return kept
+
+    def newest_path_tail(self):
+        """The newest path's stamps from the first pose this listener also received on, and the
+        poses the path should keep from there (the first ~pose messages may come before the
+        subscription does)."""
+        received = {msg.header.stamp.to_sec() for msg in self.poses}
+        stamps = self.paths[-1][1] if self.paths else []
+        tail = [t for t in stamps if t >= min(received | {math.inf})]
+        return tail, self.expected_stamps(tail[0]) if tail else [None]
+
+    def check(self, test, period, timeout=5.0):
+        """~path messages at least `period` apart (less 0.1 s of delivery jitter), and within
+        `timeout` of the stream's end one holding every pose the path keeps (none held back)."""
+        deadline = time.time() + timeout
+        while time.time() < deadline and (lambda t: t[0] != t[1])(self.newest_path_tail()):
+            time.sleep(0.1)
+        tail, expected = self.newest_path_tail()
+        print("~path messages (poses, s after the first): %s; poses received %d, kept %d" % (
+            [(len(stamps), round(t - self.paths[0][0], 2)) for t, stamps in self.paths],
+            len(self.poses), len(expected)))
+        test.assertTrue(self.paths, "no ~path message")
+        test.assertGreater(len(tail), 10, "too few poses to judge the path")
+        test.assertEqual(tail, expected)
+        gaps = [b[0] - a[0] for a, b in zip(self.paths, self.paths[1:])]
+        test.assertTrue(all(g >= period - 0.1 for g in gaps), "~path gaps %s s" % gaps)
 
 
 def import_service_type():

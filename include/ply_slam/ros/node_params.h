@@ -19,6 +19,9 @@ void readParam(const ros::NodeHandle& pnh, const std::string& name, T* value) {
 // nodes name a bad parameter (the main logs it and exits 1).
 [[noreturn]] void badParam(const std::string& name, const std::string& why);
 
+// A period parameter (s): throws as badParam unless it is > 0.
+void readPeriod(const ros::NodeHandle& pnh, const std::string& name, double* seconds);
+
 // `frame` without leading slashes (tf2 refuses them).
 std::string frameParam(std::string frame);
 

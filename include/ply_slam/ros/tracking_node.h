@@ -73,6 +73,8 @@ class TrackingNode {
   void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
                const FrameResult& result);
   void publishStats();
+  void addToPath(const geometry_msgs::PoseStamped& pose, const Eigen::Isometry3d& T_wc);
+  void sendPath();
 
   ros::NodeHandle nh_, pnh_;
   const TrackingNodeOptions options_;  // read-only after construction: any thread
@@ -96,6 +98,8 @@ class TrackingNode {
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;  // worker thread only, as last_path_pose_ and total_ms_
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();
+  ros::WallTime path_sent_;   // when ~path went out last; zero: never
+  bool path_unsent_ = false;  // poses added since
   static constexpr size_t kMaxPathPoses = 20000;
 
   // Spinner thread only, down to the unpaired images. The synchroniser emits a pair only once a

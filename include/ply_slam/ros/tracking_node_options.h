@@ -29,6 +29,9 @@ struct TrackingNodeOptions {
   size_t frame_queue_size = 100;  // frames waiting for the tracker at most, >= 1
   std::string world_frame = "map";
   bool publish_images = true;
+  // s (wall clock) between two ~path messages at least: the whole path is in each, up to
+  // 1.5 MB, too much to send with every frame to a remote rviz.
+  double path_period = 1.0;
   std::string map;  // a saved map folder to localise in; "" = a new map
   bool localisation_only = true;
   bool mapping_thread = true;  // the mapping side beside tracking, not after each keyframe
