@@ -69,6 +69,12 @@ class NodeStart(unittest.TestCase):
         self.assertIn("tracking_node: ~map has no map file /nonexistent/", tracker_output)
         self.assertIn("mapping_node: ~dense_publish_period must be > 0 s", mapper_output)
 
+    def test_tracking_node_refuses_a_path_period_of_zero(self):
+        node = self.start("tracking_node", "bad_path_period", config=CONFIG, path_period=0.0)
+        output = node.communicate(timeout=30)[0]
+        self.assertEqual(node.returncode, 1, output)
+        self.assertIn("tracking_node: ~path_period must be > 0 s", output)
+
 
 if __name__ == "__main__":
     rospy.init_node("node_start_test")
