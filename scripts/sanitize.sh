@@ -37,7 +37,7 @@ SAN_CMAKE_ARGS=(
   "-DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=address,undefined"
 )
 
-THREAD_TESTS="test_mapping_thread|test_local_bundle_adjuster|test_map_store_follows_system|test_dense_octree|test_live_segmenter|test_system_input"
+THREAD_TESTS="test_mapping_thread|test_loop_closer|test_local_bundle_adjuster|test_map_store_follows_system|test_dense_octree|test_live_segmenter|test_system_input"
 if $thread; then
   PLY_SLAM_WS="${PLY_SLAM_ROOT}/build/ws_tsan"
   SAN_CMAKE_ARGS=(

@@ -1,13 +1,26 @@
 #pragma once
 
 // Synthetic binary descriptors for the loop-module tests: random 256-bit centres and copies of
-// them with a few bits flipped.
+// them with a few bits flipped; their camera.
 #include <opencv2/core.hpp>
 
 #include <random>
 #include <set>
 
+#include "ply_slam/common/pinhole_camera.h"
+
 namespace ply_slam::test {
+
+// A 640 x 480 camera with a 500 px focal length.
+inline PinholeCamera loopTestCamera() {
+  PinholeCamera c;
+  c.fx = c.fy = 500.0;
+  c.cx = 320.0;
+  c.cy = 240.0;
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
 
 inline cv::Mat randomDescriptors(int rows, std::mt19937& rng) {
   cv::Mat d(rows, 32, CV_8U);

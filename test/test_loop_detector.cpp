@@ -21,16 +21,6 @@ constexpr int kWindow = 200;  // landmarks a keyframe sees
 constexpr int kStride = 100;  // consecutive keyframes share half of them
 constexpr int kLandmarks = 2000;
 
-PinholeCamera testCamera() {
-  PinholeCamera c;
-  c.fx = c.fy = 500.0;
-  c.cx = 320.0;
-  c.cy = 240.0;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
-
 class LoopDetectorTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -92,7 +82,7 @@ class LoopDetectorTest : public ::testing::Test {
   }
 
   const Eigen::Vector3d kOffset{0.05, 0.0, 0.0};
-  PinholeCamera camera_ = testCamera();
+  PinholeCamera camera_ = test::loopTestCamera();
   cv::Mat points_, lines_;
   std::vector<Eigen::Vector3d> world_;
   BinaryVocabulary orb_, lbd_;
@@ -278,7 +268,7 @@ TEST(LoopKeyFrameBuilder, DescribesLinesWhateverTrackingDoesAndNotOnMovers) {
                   cv::FILLED);
   LineOptions lines;
   lines.enabled = false;
-  const LoopKeyFrameBuilder builder(lines, testCamera(), LoopOptions(), 0);
+  const LoopKeyFrameBuilder builder(lines, test::loopTestCamera(), LoopOptions(), 0);
   const int all = builder.build(packet).lbd_descriptors.rows;
   EXPECT_GE(all, 8);
 

@@ -30,33 +30,61 @@ LoopCloser::LoopCloser(LoopDetector detector, const PinholeCamera& camera,
               .filename()),
       map_(map) {}
 
-std::optional<LoopCorrection> LoopCloser::addKeyFrame(KeyFrame& keyframe, LoopKeyFrame described) {
+bool LoopCloser::addKeyFrame(const KeyFrame& keyframe, LoopKeyFrame described) {
+  std::lock_guard<std::mutex> lock(detector_mutex_);
   detector_.addKeyFrame(std::move(described));
-  syncCovisibility(keyframe);
-  if (last_loop_keyframe_ >= 0 &&
-      keyframe.id - last_loop_keyframe_ <= options_.min_keyframes_between)
-    return std::nullopt;
+  syncCovisibilityLocked(keyframe);
+  return last_loop_keyframe_ < 0 ||
+         keyframe.id - last_loop_keyframe_ > options_.min_keyframes_between;
+}
+
+std::optional<LoopDetection> LoopCloser::detect(long id) {
+  std::lock_guard<std::mutex> lock(detector_mutex_);
   ++counts_.queries;
-  const LoopDetection detection = detector_.detect(keyframe.id);
+  LoopDetection detection = detector_.detect(id);
   counts_.detected += !detection.consistent.empty();
   if (!detection.loop) return std::nullopt;
   ++counts_.accepted;
+  return detection;
+}
+
+std::optional<LoopCorrection> LoopCloser::close(KeyFrame& keyframe,
+                                                const LoopDetection& detection) {
   KeyFrame* candidate = keyFrame(*detection.loop);
   if (!candidate) return std::nullopt;  // culled since it joined the database
   const Eigen::Isometry3d& T_query_candidate = detection.geometry->T_query_candidate;
-  if (!plausible(keyframe, *candidate, loopShift(keyframe, *candidate, T_query_candidate))) {
+  const bool closes =
+      plausible(keyframe, *candidate, loopShift(keyframe, *candidate, T_query_candidate));
+  std::optional<LoopCorrection> correction;
+  if (closes) correction = corrector_.correct(keyframe, *candidate, T_query_candidate);
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  if (!closes) {
     ++counts_.implausible;
     return std::nullopt;
   }
-  LoopCorrection correction = corrector_.correct(keyframe, *candidate, T_query_candidate);
   last_loop_keyframe_ = keyframe.id;
   ++counts_.corrected;
   // The fusion linked the two sides: they are no loop candidates of each other any more.
-  for (const auto& [kf, shared] : keyframe.covisibility) syncCovisibility(*kf);
+  for (const auto& [kf, shared] : keyframe.covisibility) syncCovisibilityLocked(*kf);
   return correction;
 }
 
+void LoopCloser::removeKeyFrame(long id) {
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  detector_.removeKeyFrame(id);
+}
+
+std::vector<long> LoopCloser::recognise(const cv::Mat& orb_descriptors, size_t max_results) const {
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  return detector_.recognise(orb_descriptors, max_results);
+}
+
 void LoopCloser::syncCovisibility(const KeyFrame& keyframe) {
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  syncCovisibilityLocked(keyframe);
+}
+
+void LoopCloser::syncCovisibilityLocked(const KeyFrame& keyframe) {
   for (const auto& [other, shared] : keyframe.covisibility) {
     try {
       detector_.setCovisibility(other->id, covisibilityById(*other));
@@ -89,6 +117,7 @@ KeyFrame* LoopCloser::keyFrame(long id) const {
 }
 
 std::optional<KeyFramePlace> LoopCloser::place(const KeyFrame& keyframe) const {
+  std::lock_guard<std::mutex> lock(detector_mutex_);
   const LoopKeyFrame* stored = nullptr;
   try {
     stored = &detector_.keyFrame(keyframe.id);
@@ -124,6 +153,7 @@ void LoopCloser::addLoadedKeyFrame(const KeyFrame& keyframe, const KeyFramePlace
   }
   kf.lbd_descriptors = place.lbd_descriptors.clone();
   kf.instances = place.instances;
+  std::lock_guard<std::mutex> lock(detector_mutex_);
   detector_.addKeyFrame(std::move(kf));
 }
 

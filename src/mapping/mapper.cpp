@@ -61,8 +61,12 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
   if (!loop_closer_) return std::nullopt;
   LoopKeyFrame described = loop_closer_->describe(packet);
   std::unique_lock<std::mutex> lock(map_.updateMutex());
-  std::optional<LoopCorrection> correction =
-      loop_closer_->addKeyFrame(keyframe, std::move(described));
+  if (!loop_closer_->addKeyFrame(keyframe, std::move(described))) return std::nullopt;
+  lock.unlock();
+  const std::optional<LoopDetection> detection = loop_closer_->detect(keyframe.id);
+  lock.lock();
+  if (!detection) return std::nullopt;
+  std::optional<LoopCorrection> correction = loop_closer_->close(keyframe, *detection);
   if (!correction) return correction;
   tell(correction->world_correction);
   const int iterations = options_.loop_correction.global_ba_iterations;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -21,7 +22,10 @@ struct LoopClosureCounts {
 };
 
 // The mapping side's place recognition: every keyframe goes into the database (points, lines,
-// instances), is queried for a loop, and an accepted loop is closed in the map.
+// instances), is queried for a loop, and an accepted loop is closed in the map. The database has
+// a mutex of its own: the query and the geometric check read nothing of the map and run without
+// the map's lock (they take tens of ms where many candidates are consistent), while the tracker
+// may ask recognise() from its thread. Lock order: the map's update lock, then the database's.
 class LoopCloser {
  public:
   // Of `options` it reads loop, loop_correction, lines and mask_dilation_px.
@@ -31,15 +35,20 @@ class LoopCloser {
   // What the database keeps of a keyframe, from its packet alone (its lines are described
   // here: the slow part, which needs nothing of the map).
   LoopKeyFrame describe(const KeyFramePacket& packet) const { return builder_.build(packet); }
-  // After the keyframe was fused and adjusted: database, query, correction. Returns the
-  // correction when a loop was closed.
-  std::optional<LoopCorrection> addKeyFrame(KeyFrame& keyframe, LoopKeyFrame described);
+  // After the keyframe was fused and adjusted, with the map's lock held: into the database, its
+  // covisibility from the map's. Returns whether it is to be queried (not too soon after the
+  // last loop closed).
+  bool addKeyFrame(const KeyFrame& keyframe, LoopKeyFrame described);
+  // The query and the geometric check of keyframe `id` (added before), without the map's lock.
+  // Returns the accepted loop, if any.
+  std::optional<LoopDetection> detect(long id);
+  // With the map's lock: closes an accepted loop of `keyframe` unless the candidate has left
+  // the map or the correction is more than drift explains. Returns the correction.
+  std::optional<LoopCorrection> close(KeyFrame& keyframe, const LoopDetection& detection);
   // A keyframe the mapper culled leaves the database.
-  void removeKeyFrame(long id) { detector_.removeKeyFrame(id); }
+  void removeKeyFrame(long id);
   // Relocalisation: keyframes that look like the descriptors, most similar first.
-  std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const {
-    return detector_.recognise(orb_descriptors, max_results);
-  }
+  std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
   const LoopClosureCounts& counts() const { return counts_; }
   // What the database keeps of a keyframe beyond its features (null: not in the database).
   std::optional<KeyFramePlace> place(const KeyFrame& keyframe) const;
@@ -54,10 +63,12 @@ class LoopCloser {
 
  private:
   KeyFrame* keyFrame(long id) const;
+  void syncCovisibilityLocked(const KeyFrame& keyframe);  // database mutex held
   // Whether the loop's shift of the query is within the drift the tracker could have gathered
   // since the candidate (LoopCorrectionOptions).
   bool plausible(const KeyFrame& query, const KeyFrame& candidate, const LoopShift& shift) const;
 
+  mutable std::mutex detector_mutex_;  // detector_ and counts_
   LoopDetector detector_;
   LoopKeyFrameBuilder builder_;
   LoopCorrector corrector_;

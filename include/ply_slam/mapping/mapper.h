@@ -50,7 +50,8 @@ struct GlobalBundleAdjustmentCounts {
 //
 // Threads: insertKeyFrame, closeLoop, wholeMap and localUpdate are called from one thread (the
 // mapping side's, which may be the tracker's) and take map.updateMutex() themselves, step by
-// step; Ceres solves and line description run without it. recognise, places,
+// step; Ceres solves, line description and the loop query with its geometric check run without
+// it. recognise, places,
 // addLoadedKeyFrames and landmarkSink's calls (from the tracker's thread) expect the caller to
 // hold it (or no other thread to run).
 class Mapper {
