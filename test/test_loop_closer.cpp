@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <future>
+#include <memory>
 #include <random>
 
 #include "default_vocabularies.h"
@@ -35,15 +36,27 @@ KeyFrame mapKeyFrame(long id, double stamp) {
   return kf;
 }
 
-TEST(LoopCloser, QueriesTheDatabaseWhileTheTrackerHoldsTheMap) {
-  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
-  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
-  const PinholeCamera camera = test::loopTestCamera();
-  MapperOptions options;
-  options.loop.enabled = true;
-  Map map;
-  const LandmarkFuser fuser(camera, options.orb, options.local);
-  LoopCloser closer(LoopDetector::fromOptions(camera, options.loop), camera, options, fuser, map);
+// A place database over an empty map, with the default vocabularies.
+class LoopCloserTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
+    PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
+    options_.loop.enabled = true;
+    closer_ = std::make_unique<LoopCloser>(LoopDetector::fromOptions(camera_, options_.loop),
+                                           camera_, options_, fuser_, map_);
+  }
+
+  const PinholeCamera camera_ = test::loopTestCamera();
+  MapperOptions options_;
+  Map map_;
+  const LandmarkFuser fuser_{camera_, options_.orb, options_.local};
+  std::unique_ptr<LoopCloser> closer_;
+};
+
+TEST_F(LoopCloserTest, QueriesTheDatabaseWhileTheTrackerHoldsTheMap) {
+  Map& map = map_;
+  LoopCloser& closer = *closer_;
   std::mt19937 rng(7);
   const cv::Mat seen = test::randomDescriptors(400, rng);
   const KeyFrame first = mapKeyFrame(0, 0.0), again = mapKeyFrame(1, 20.0);
@@ -66,6 +79,21 @@ TEST(LoopCloser, QueriesTheDatabaseWhileTheTrackerHoldsTheMap) {
   EXPECT_FALSE(query.get().has_value());
   ASSERT_FALSE(places.empty());
   EXPECT_EQ(places.front(), 0);
+}
+
+// With the mapping thread the tracker makes keyframes the mapping side has not added to the
+// database yet; a loop's fusion links them to the keyframes it syncs (a ring run stopped with
+// "LoopDetector: no keyframe 366").
+TEST_F(LoopCloserTest, SyncsCovisibilityWithKeyFramesTheDatabaseHasNotGot) {
+  LoopCloser& closer = *closer_;
+  std::mt19937 rng(3);
+  KeyFrame added = mapKeyFrame(0, 0.0), newer = mapKeyFrame(1, 0.5);
+  EXPECT_TRUE(
+      closer.addKeyFrame(added, describedKeyFrame(0, 0.0, test::randomDescriptors(100, rng), rng)));
+  added.covisibility[&newer] = 40;
+  newer.covisibility[&added] = 40;
+  EXPECT_NO_THROW(closer.syncCovisibility(added));
+  EXPECT_NO_THROW(closer.syncCovisibility(newer));
 }
 
 }  // namespace

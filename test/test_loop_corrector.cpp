@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <iostream>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "ply_slam/common/config.h"
@@ -57,28 +58,40 @@ double maxPositionError(const Map& map, const std::vector<Eigen::Isometry3d>& tr
   return worst;
 }
 
-TEST(LoopCorrector, ClosingTheSquareTakesOutItsDrift) {
-  const std::vector<Eigen::Isometry3d> truth = truePath();
-  const std::vector<Eigen::Isometry3d> drifted = driftedPath(truth);
+// The drifted square as a map: each keyframe with a landmark 2 m in front of it that its
+// successor also sees.
+struct SquareMap {
   Map map;
   std::vector<std::shared_ptr<KeyFrame>> keyframes;
   std::vector<std::shared_ptr<MapPoint>> points;
-  for (size_t k = 0; k < truth.size(); ++k) {
-    auto kf = std::make_shared<KeyFrame>();
-    kf->T_cw = drifted[k].inverse();
-    kf->features.scales = &kScales;
-    kf->features.keypoints.resize(2);  // 0: its own landmark, 1: its predecessor's
-    kf->map_points.resize(2);
-    kf->parent = keyframes.empty() ? nullptr : keyframes.back().get();
-    map.addKeyFrame(kf);
-    ASSERT_EQ(kf->id, static_cast<long>(k));
-    // A landmark 2 m in front of it (no descriptor, no viewing range: fusion leaves it alone).
-    points.push_back(
-        map.createMapPoint(drifted[k] * Eigen::Vector3d(0.2, -0.1, 2.0), cv::Mat(), kf->id));
-    map.addObservation(*kf, 0, points.back());
-    if (k > 0) map.addObservation(*kf, 1, points[k - 1]);
-    keyframes.push_back(kf);
+
+  explicit SquareMap(const std::vector<Eigen::Isometry3d>& drifted) {
+    for (size_t k = 0; k < drifted.size(); ++k) {
+      auto kf = std::make_shared<KeyFrame>();
+      kf->T_cw = drifted[k].inverse();
+      kf->features.scales = &kScales;
+      kf->features.keypoints.resize(2);  // 0: its own landmark, 1: its predecessor's
+      kf->map_points.resize(2);
+      kf->parent = keyframes.empty() ? nullptr : keyframes.back().get();
+      map.addKeyFrame(kf);
+      // No descriptor, no viewing range: fusion leaves the landmarks alone.
+      points.push_back(
+          map.createMapPoint(drifted[k] * Eigen::Vector3d(0.2, -0.1, 2.0), cv::Mat(), kf->id));
+      map.addObservation(*kf, 0, points.back());
+      if (k > 0) map.addObservation(*kf, 1, points[k - 1]);
+      keyframes.push_back(kf);
+    }
   }
+};
+
+TEST(LoopCorrector, ClosingTheSquareTakesOutItsDrift) {
+  const std::vector<Eigen::Isometry3d> truth = truePath();
+  const std::vector<Eigen::Isometry3d> drifted = driftedPath(truth);
+  SquareMap square(drifted);
+  Map& map = square.map;
+  const auto& keyframes = square.keyframes;
+  const auto& points = square.points;
+  for (size_t k = 0; k < keyframes.size(); ++k) ASSERT_EQ(keyframes[k]->id, static_cast<long>(k));
   KeyFrame& query = *keyframes.back();
   KeyFrame& candidate = *keyframes.front();
   const Eigen::Isometry3d T_query_candidate = truth.back().inverse() * truth.front();
@@ -110,6 +123,84 @@ TEST(LoopCorrector, ClosingTheSquareTakesOutItsDrift) {
   for (size_t k = 0; k < points.size(); ++k)
     EXPECT_LT((keyframes[k]->T_cw * points[k]->position - seen[k]).norm(), 1e-9)
         << "landmark " << k;
+}
+
+// The tracker's side of a correction on the mapping thread: it is told of the rigid move, and
+// while the pose graph is solved it makes a keyframe 0.4 m on from the returning one, with a
+// landmark 2 m in front of it.
+class TrackerBesideTheCorrection : public CorrectionPauses {
+ public:
+  TrackerBesideTheCorrection(Map& map, const KeyFrame& query) : map_(map), query_(query) {}
+
+  void movedRigidly(const Eigen::Isometry3d& world_correction) override {
+    steps_.push_back("rigid");
+    rigid_ = world_correction;
+  }
+  void pause() override { steps_.push_back("pause"); }
+  void unlocked(const std::function<void()>& work) override {
+    steps_.push_back("unlocked");
+    made_ = std::make_shared<KeyFrame>();
+    made_->T_cw = (query_.T_wc() * Eigen::Translation3d(0, 0, 0.4)).inverse();
+    made_->features.scales = &kScales;
+    made_->features.keypoints.resize(1);
+    made_->map_points.resize(1);
+    map_.addKeyFrame(made_);
+    point_ = map_.createMapPoint(made_->T_wc() * Eigen::Vector3d(0, 0, 2), cv::Mat(), made_->id);
+    map_.addObservation(*made_, 0, point_);
+    work();
+  }
+
+  std::vector<std::string> steps_;
+  Eigen::Isometry3d rigid_ = Eigen::Isometry3d::Identity();
+  std::shared_ptr<KeyFrame> made_;
+  std::shared_ptr<MapPoint> point_;
+
+ private:
+  Map& map_;
+  const KeyFrame& query_;
+};
+
+TEST(LoopCorrector, TheTrackerTracksBetweenTheSteps) {
+  const std::vector<Eigen::Isometry3d> truth = truePath();
+  const std::vector<Eigen::Isometry3d> drifted = driftedPath(truth);
+  const Eigen::Isometry3d T_query_candidate = truth.back().inverse() * truth.front();
+  SystemConfig config;
+  config.camera = test::makeCamera();
+  const LandmarkFuser fuser(config.camera, config.orb, config.mapping);
+  // In one hold, as in line.
+  SquareMap alone(drifted);
+  LoopCorrector(LoopCorrectionOptions(), fuser, alone.map)
+      .correct(*alone.keyframes.back(), *alone.keyframes.front(), T_query_candidate);
+  // In steps, the tracker making a keyframe meanwhile.
+  SquareMap beside(drifted);
+  KeyFrame& query = *beside.keyframes.back();
+  const Eigen::Isometry3d query_before = query.T_wc();
+  TrackerBesideTheCorrection tracker(beside.map, query);
+  const LoopCorrection correction =
+      LoopCorrector(LoopCorrectionOptions(), fuser, beside.map)
+          .correct(query, *beside.keyframes.front(), T_query_candidate, &tracker);
+
+  // Told of the rigid move first, a pause before fusing each current-side keyframe (the query
+  // and the one before it), the pose graph solved without the lock.
+  EXPECT_EQ(tracker.steps_, (std::vector<std::string>{"rigid", "pause", "pause", "unlocked"}));
+  // The rigid move put the query where the loop says.
+  EXPECT_LT(
+      ((tracker.rigid_ * query_before).matrix() - correction.shift.query_T_wc.matrix()).norm(),
+      1e-9);
+  // The keyframes the correction knew end where they end in one hold.
+  for (size_t k = 0; k < alone.keyframes.size(); ++k)
+    EXPECT_LT((alone.keyframes[k]->T_wc().matrix() - beside.keyframes[k]->T_wc().matrix()).norm(),
+              1e-9)
+        << "keyframe " << k;
+  // The one made meanwhile kept its place beside the query, its landmark in front of it.
+  const Eigen::Isometry3d offset = query.T_wc().inverse() * tracker.made_->T_wc();
+  EXPECT_LT((offset.translation() - Eigen::Vector3d(0, 0, 0.4)).norm(), 1e-9);
+  EXPECT_LT((offset.linear() - Eigen::Matrix3d::Identity()).norm(), 1e-9);
+  EXPECT_LT((tracker.made_->T_cw * tracker.point_->position - Eigen::Vector3d(0, 0, 2)).norm(),
+            1e-9);
+  // The whole correction is the query's move from before the rigid one to its end.
+  EXPECT_LT(((correction.world_correction * query_before).matrix() - query.T_wc().matrix()).norm(),
+            1e-9);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/mapping/carry_along.h"
 
 namespace ply_slam {
 
@@ -61,43 +62,12 @@ Eigen::Isometry3d GlobalBundleAdjustment::writeBack(Map& map, const BundleWindow
   std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> before;  // T_wc, in id order
   for (const auto& kf : map.keyFrames()) before.emplace_back(kf.get(), kf->T_wc());
   adjuster_.apply(map, window);
-  carryAlong(map, window, before);
-  const auto& [newest, newest_before] = before.back();
-  return newest->T_wc() * newest_before.inverse();
-}
-
-void GlobalBundleAdjustment::carryAlong(
-    Map& map, const BundleWindow& window,
-    const std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>>& before) {
   std::set<const KeyFrame*> solved;
   for (const auto& pose : window.poses)
     if (pose.local) solved.insert(pose.keyframe);
-  std::set<long> carried;
-  // How each keyframe moved; one made since the window was gathered follows its parent, else
-  // the keyframe made before it.
-  std::map<long, Eigen::Isometry3d> moved;
-  Eigen::Isometry3d previous = Eigen::Isometry3d::Identity();
-  for (const auto& [kf, T_wc] : before) {
-    if (!solved.count(kf)) {
-      const auto parent = kf->parent ? moved.find(kf->parent->id) : moved.end();
-      kf->T_cw = ((parent != moved.end() ? parent->second : previous) * T_wc).inverse();
-      carried.insert(kf->id);
-    }
-    previous = moved[kf->id] = kf->T_wc() * T_wc.inverse();
-  }
-  // Their landmarks (the window holds every landmark older keyframes made).
-  for (const auto& point : map.mapPoints()) {
-    if (point->bad || !carried.count(point->first_keyframe_id)) continue;
-    const Eigen::Isometry3d& move = moved.at(point->first_keyframe_id);
-    point->position = move * point->position;
-    point->normal = move.linear() * point->normal;
-  }
-  for (const auto& line : map.mapLines()) {
-    if (line->bad || !carried.count(line->first_keyframe_id)) continue;
-    const Eigen::Isometry3d& move = moved.at(line->first_keyframe_id);
-    line->start = move * line->start;
-    line->end = move * line->end;
-  }
+  carryAlong(map, solved, before);
+  const auto& [newest, newest_before] = before.back();
+  return newest->T_wc() * newest_before.inverse();
 }
 
 }  // namespace ply_slam

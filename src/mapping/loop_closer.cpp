@@ -1,6 +1,7 @@
 #include "ply_slam/mapping/loop_closer.h"
 
 #include <filesystem>
+#include <vector>
 
 #include "ply_slam/loop/vocabulary_file.h"
 #include "ply_slam/loop/vocabulary_path.h"
@@ -48,15 +49,15 @@ std::optional<LoopDetection> LoopCloser::detect(long id) {
   return detection;
 }
 
-std::optional<LoopCorrection> LoopCloser::close(KeyFrame& keyframe,
-                                                const LoopDetection& detection) {
+std::optional<LoopCorrection> LoopCloser::close(KeyFrame& keyframe, const LoopDetection& detection,
+                                                CorrectionPauses* pauses) {
   KeyFrame* candidate = keyFrame(*detection.loop);
   if (!candidate) return std::nullopt;  // culled since it joined the database
   const Eigen::Isometry3d& T_query_candidate = detection.geometry->T_query_candidate;
   const bool closes =
       plausible(keyframe, *candidate, loopShift(keyframe, *candidate, T_query_candidate));
   std::optional<LoopCorrection> correction;
-  if (closes) correction = corrector_.correct(keyframe, *candidate, T_query_candidate);
+  if (closes) correction = corrector_.correct(keyframe, *candidate, T_query_candidate, pauses);
   std::lock_guard<std::mutex> lock(detector_mutex_);
   if (!closes) {
     ++counts_.implausible;
@@ -85,14 +86,16 @@ void LoopCloser::syncCovisibility(const KeyFrame& keyframe) {
 }
 
 void LoopCloser::syncCovisibilityLocked(const KeyFrame& keyframe) {
-  for (const auto& [other, shared] : keyframe.covisibility) {
+  std::vector<const KeyFrame*> linked{&keyframe};
+  for (const auto& [other, shared] : keyframe.covisibility) linked.push_back(other);
+  for (const KeyFrame* kf : linked) {
     try {
-      detector_.setCovisibility(other->id, covisibilityById(*other));
+      detector_.setCovisibility(kf->id, covisibilityById(*kf));
     } catch (const std::out_of_range&) {
-      // A keyframe the detector never got (made before loop closure was switched on).
+      // A keyframe the database has not got: made before loop closure was switched on, or by
+      // the tracker while the mapping thread works on an older one (it syncs when added).
     }
   }
-  detector_.setCovisibility(keyframe.id, covisibilityById(keyframe));
 }
 
 bool LoopCloser::plausible(const KeyFrame& query, const KeyFrame& candidate,

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/mapping/carry_along.h"
 
 namespace ply_slam {
 namespace {
@@ -53,7 +54,8 @@ LoopShift loopShift(const KeyFrame& query, const KeyFrame& candidate,
 }
 
 LoopCorrection LoopCorrector::correct(KeyFrame& query, KeyFrame& candidate,
-                                      const Eigen::Isometry3d& T_query_candidate) {
+                                      const Eigen::Isometry3d& T_query_candidate,
+                                      CorrectionPauses* pauses) {
   Stopwatch watch;
   LoopCorrection correction;
   correction.loop = {query.id, candidate.id, T_query_candidate};
@@ -65,12 +67,14 @@ LoopCorrection LoopCorrector::correct(KeyFrame& query, KeyFrame& candidate,
   const std::vector<KeyFrame*> current_side = moveCurrentSide(query, rigid);
   correction.connected_keyframes = static_cast<int>(current_side.size());
   moveLandmarks(keyframes, before);
-  const auto links = fuseAcrossLoop(current_side, candidate, &correction.fused);
+  if (pauses) pauses->movedRigidly(rigid);
+  const auto links = fuseAcrossLoop(current_side, candidate, &correction.fused, pauses);
 
   loops_.push_back(correction.loop);
   PoseGraph graph = essentialGraph(keyframes, before, candidate, links);
   correction.loop_links = static_cast<int>(links.size());
-  correction.pose_graph = graph.optimise(options_.pose_graph);
+  const auto optimise = [&] { correction.pose_graph = graph.optimise(options_.pose_graph); };
+  pauses ? pauses->unlocked(optimise) : optimise();
   applyPoses(keyframes, graph);
   correction.world_correction = query.T_wc() * before.at(&query).inverse();
   correction.ms = watch.elapsedMs();
@@ -93,7 +97,8 @@ std::vector<KeyFrame*> LoopCorrector::moveCurrentSide(KeyFrame& query,
 }
 
 std::vector<std::pair<KeyFrame*, KeyFrame*>> LoopCorrector::fuseAcrossLoop(
-    const std::vector<KeyFrame*>& current_side, KeyFrame& candidate, int* fused) {
+    const std::vector<KeyFrame*>& current_side, KeyFrame& candidate, int* fused,
+    CorrectionPauses* pauses) {
   const std::set<KeyFrame*> current(current_side.begin(), current_side.end());
   std::vector<KeyFrame*> old_side{&candidate};
   for (KeyFrame* kf : candidate.bestCovisible(options_.loop_side_keyframes))
@@ -104,7 +109,10 @@ std::vector<std::pair<KeyFrame*, KeyFrame*>> LoopCorrector::fuseAcrossLoop(
   for (KeyFrame* kf : current_side)
     for (const auto& [other, shared] : kf->covisibility) linked_before[kf].insert(other);
   *fused = 0;
-  for (KeyFrame* kf : current_side) *fused += fuser_.fuse(map_, *kf, old_side);
+  for (KeyFrame* kf : current_side) {
+    if (pauses) pauses->pause();
+    *fused += fuser_.fuse(map_, *kf, old_side);
+  }
 
   // Links the fusion created between the two sides: the loop's own pose-graph edges.
   std::vector<std::pair<KeyFrame*, KeyFrame*>> links;
@@ -153,8 +161,13 @@ PoseGraph LoopCorrector::essentialGraph(
 void LoopCorrector::applyPoses(const std::vector<std::shared_ptr<KeyFrame>>& keyframes,
                                const PoseGraph& graph) {
   const Poses from = posesOf(keyframes);
+  std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> all_before;  // T_wc, in id order
+  for (const auto& kf : map_.keyFrames()) all_before.emplace_back(kf.get(), kf->T_wc());
   for (const auto& kf : keyframes) kf->T_cw = graph.pose(kf->id).inverse();
   moveLandmarks(keyframes, from);
+  std::set<const KeyFrame*> solved;
+  for (const auto& kf : keyframes) solved.insert(kf.get());
+  carryAlong(map_, solved, all_before);
 }
 
 void LoopCorrector::moveLandmarks(const std::vector<std::shared_ptr<KeyFrame>>& keyframes,

@@ -1,10 +1,46 @@
 #include "ply_slam/mapping/mapper.h"
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 
 #include "ply_slam/common/stopwatch.h"
 
 namespace ply_slam {
+namespace {
+
+// A loop correction on the mapping thread lets the tracker at the map between its steps.
+class LockPauses : public CorrectionPauses {
+ public:
+  LockPauses(std::unique_lock<std::mutex>& lock, std::function<void(const Eigen::Isometry3d&)> tell)
+      : lock_(lock), tell_(std::move(tell)) {}
+
+  void movedRigidly(const Eigen::Isometry3d& world_correction) override {
+    tell_(world_correction);
+    told_ = world_correction;
+  }
+  void pause() override {
+    lock_.unlock();
+    // A mutex is not handed over: without a moment's wait this thread takes it again before
+    // the tracker, woken, gets to it.
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    lock_.lock();
+  }
+  void unlocked(const std::function<void()>& work) override {
+    lock_.unlock();
+    work();
+    lock_.lock();
+  }
+  // What the tracker was told so far (the rigid move).
+  const Eigen::Isometry3d& told() const { return told_; }
+
+ private:
+  std::unique_lock<std::mutex>& lock_;
+  std::function<void(const Eigen::Isometry3d&)> tell_;
+  Eigen::Isometry3d told_ = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace
 
 Mapper::Mapper(const PinholeCamera& camera, const MapperOptions& options, Map& map,
                bool wait_for_global_ba)
@@ -66,9 +102,16 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
   const std::optional<LoopDetection> detection = loop_closer_->detect(keyframe.id);
   lock.lock();
   if (!detection) return std::nullopt;
-  std::optional<LoopCorrection> correction = loop_closer_->close(keyframe, *detection);
+  std::optional<LoopCorrection> correction;
+  if (wait_for_global_ba_) {  // in line: nobody waits for the map meanwhile
+    correction = loop_closer_->close(keyframe, *detection);
+    if (correction) tell(correction->world_correction);
+  } else {
+    LockPauses pauses(lock, [this](const Eigen::Isometry3d& c) { tell(c); });
+    correction = loop_closer_->close(keyframe, *detection, &pauses);
+    if (correction) tell(correction->world_correction * pauses.told().inverse());
+  }
   if (!correction) return correction;
-  tell(correction->world_correction);
   const int iterations = options_.loop_correction.global_ba_iterations;
   if (iterations <= 0) return correction;
   Stopwatch watch;

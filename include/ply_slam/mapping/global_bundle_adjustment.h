@@ -42,9 +42,6 @@ class GlobalBundleAdjustment {
 
  private:
   void stop(bool abandon);
-  // Moves what the window did not hold; `before`: every keyframe's T_wc before, in id order.
-  static void carryAlong(Map& map, const BundleWindow& window,
-                         const std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>>& before);
 
   const LocalBundleAdjuster& adjuster_;
   std::atomic<bool> abandon_{false};

@@ -43,8 +43,10 @@ class LoopCloser {
   // Returns the accepted loop, if any.
   std::optional<LoopDetection> detect(long id);
   // With the map's lock: closes an accepted loop of `keyframe` unless the candidate has left
-  // the map or the correction is more than drift explains. Returns the correction.
-  std::optional<LoopCorrection> close(KeyFrame& keyframe, const LoopDetection& detection);
+  // the map or the correction is more than drift explains (`pauses`: see LoopCorrector).
+  // Returns the correction.
+  std::optional<LoopCorrection> close(KeyFrame& keyframe, const LoopDetection& detection,
+                                      CorrectionPauses* pauses = nullptr);
   // A keyframe the mapper culled leaves the database.
   void removeKeyFrame(long id);
   // Relocalisation: keyframes that look like the descriptors, most similar first.
