@@ -31,7 +31,7 @@ LoopKeyFrameBuilder::LoopKeyFrameBuilder(const LineOptions& lines, const Pinhole
       mover_classes_(loop.dynamic_classes),
       mask_dilation_px_(mask_dilation_px) {}
 
-LoopKeyFrame LoopKeyFrameBuilder::build(const KeyFramePacket& packet) const {
+LoopKeyFrame LoopKeyFrameBuilder::build(const KeyFramePacket& packet, cv::Mat* movers_out) const {
   LoopKeyFrame kf;
   kf.id = packet.id;
   kf.stamp = packet.stamp;
@@ -46,14 +46,8 @@ LoopKeyFrame LoopKeyFrameBuilder::build(const KeyFramePacket& packet) const {
   }
   kf.orb_descriptors = keptRows(packet.descriptors, keep);
   kf.lbd_descriptors = describeLines(packet.rgb, movers);
+  if (movers_out) *movers_out = movers;
   return kf;
-}
-
-cv::Mat LoopKeyFrameBuilder::movers(const KeyFramePacket& packet) const {
-  std::vector<InstanceBox> boxes;
-  cv::Mat mask;
-  readLabels(packet, boxes, mask);
-  return mask;
 }
 
 void LoopKeyFrameBuilder::readLabels(const KeyFramePacket& packet, std::vector<InstanceBox>& boxes,

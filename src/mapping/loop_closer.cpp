@@ -54,15 +54,13 @@ std::optional<LoopCorrection> LoopCloser::close(KeyFrame& keyframe, const LoopDe
   KeyFrame* candidate = keyFrame(*detection.loop);
   if (!candidate) return std::nullopt;  // culled since it joined the database
   const Eigen::Isometry3d& T_query_candidate = detection.geometry->T_query_candidate;
-  const bool closes =
-      plausible(keyframe, *candidate, loopShift(keyframe, *candidate, T_query_candidate));
-  std::optional<LoopCorrection> correction;
-  if (closes) correction = corrector_.correct(keyframe, *candidate, T_query_candidate, pauses);
-  std::lock_guard<std::mutex> lock(detector_mutex_);
-  if (!closes) {
+  if (!plausible(keyframe, *candidate, loopShift(keyframe, *candidate, T_query_candidate))) {
+    std::lock_guard<std::mutex> lock(detector_mutex_);
     ++counts_.implausible;
     return std::nullopt;
   }
+  LoopCorrection correction = corrector_.correct(keyframe, *candidate, T_query_candidate, pauses);
+  std::lock_guard<std::mutex> lock(detector_mutex_);
   last_loop_keyframe_ = keyframe.id;
   ++counts_.corrected;
   // The fusion linked the two sides: they are no loop candidates of each other any more.

@@ -31,7 +31,7 @@ class LockPauses : public CorrectionPauses {
     work();
     lock_.lock();
   }
-  // What the tracker was told so far (the rigid move).
+  // What the tracker was told so far (the rigid move; identity when not used).
   const Eigen::Isometry3d& told() const { return told_; }
 
  private:
@@ -102,16 +102,12 @@ std::optional<LoopCorrection> Mapper::closeLoop(KeyFrame& keyframe, const KeyFra
   const std::optional<LoopDetection> detection = loop_closer_->detect(keyframe.id);
   lock.lock();
   if (!detection) return std::nullopt;
-  std::optional<LoopCorrection> correction;
-  if (wait_for_global_ba_) {  // in line: nobody waits for the map meanwhile
-    correction = loop_closer_->close(keyframe, *detection);
-    if (correction) tell(correction->world_correction);
-  } else {
-    LockPauses pauses(lock, [this](const Eigen::Isometry3d& c) { tell(c); });
-    correction = loop_closer_->close(keyframe, *detection, &pauses);
-    if (correction) tell(correction->world_correction * pauses.told().inverse());
-  }
+  // In line nobody waits for the map meanwhile: one hold, one move told (runs repeat).
+  LockPauses pauses(lock, [this](const Eigen::Isometry3d& c) { tell(c); });
+  std::optional<LoopCorrection> correction =
+      loop_closer_->close(keyframe, *detection, wait_for_global_ba_ ? nullptr : &pauses);
   if (!correction) return correction;
+  tell(correction->world_correction * pauses.told().inverse());  // what is left to tell
   const int iterations = options_.loop_correction.global_ba_iterations;
   if (iterations <= 0) return correction;
   Stopwatch watch;

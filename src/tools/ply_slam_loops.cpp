@@ -116,7 +116,8 @@ class KeyFrameCollector {
 
   void add(const KeyFramePacket& packet) {
     Stopwatch watch;
-    LoopKeyFrame kf = builder_.build(packet);
+    cv::Mat movers;
+    LoopKeyFrame kf = builder_.build(packet, &movers);
     line_counts_.push_back(kf.lbd_descriptors.rows);
     instance_counts_.push_back(static_cast<long>(kf.instances.size()));
     detector_.addKeyFrame(std::move(kf));
@@ -126,7 +127,6 @@ class KeyFrameCollector {
     view.stamp = packet.stamp;
     cv::resize(packet.depth, view.depth, cv::Size(), 1.0 / kDepthFactor, 1.0 / kDepthFactor,
                cv::INTER_NEAREST);
-    const cv::Mat movers = builder_.movers(packet);
     if (!movers.empty())
       cv::resize(movers, view.movers, view.depth.size(), 0.0, 0.0, cv::INTER_NEAREST);
     views_.push_back(std::move(view));

@@ -21,10 +21,9 @@ class LoopKeyFrameBuilder {
   LoopKeyFrameBuilder(const LineOptions& lines, const PinholeCamera& camera,
                       const LoopOptions& loop, int mask_dilation_px);
 
-  LoopKeyFrame build(const KeyFramePacket& packet) const;
-  // The pixels build() leaves out: those of instances of moving classes, dilated (8UC1, non-zero
-  // on them; empty when there are none).
-  cv::Mat movers(const KeyFramePacket& packet) const;
+  // `movers` (optional): the pixels left out, those of instances of moving classes, dilated
+  // (8UC1, non-zero on them; empty when there are none).
+  LoopKeyFrame build(const KeyFramePacket& packet, cv::Mat* movers = nullptr) const;
 
  private:
   // The box of each labelled instance, and the pixels of those of moving classes, dilated
