@@ -100,6 +100,18 @@ void expectConsistent(const Map& map) {
     for (const auto& o : p->observers) EXPECT_TRUE(in_map.count(o.keyframe));
 }
 
+TEST(SpanningTreeParent, IsTheOlderKeyFrameSharingTheMost) {
+  HandMap m(10);
+  m.addChain(3);
+  m.see(0, 0, 3);  // keyframe 1 shares 3 points with 0 ...
+  m.see(1, 0, 10);
+  m.see(2, 2, 10);  // ... and 8 with the newer 2 (made by the tracker before 1 was inserted)
+  EXPECT_EQ(m.keyframes_[1]->bestCovisible(1).front(), m.keyframes_[2].get());
+  EXPECT_EQ(m.keyframes_[1]->bestOlderCovisible(), m.keyframes_[0].get());
+  EXPECT_EQ(m.keyframes_[2]->bestOlderCovisible(), m.keyframes_[1].get());
+  EXPECT_EQ(m.keyframes_[0]->bestOlderCovisible(), nullptr);
+}
+
 TEST(EraseKeyFrame, UnlinksEverythingAndKeepsTheTreeRooted) {
   HandMap h(12);
   h.addChain(3);                         // 0 (the root) <- 1 <- 2

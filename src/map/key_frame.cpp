@@ -22,4 +22,10 @@ std::vector<KeyFrame*> KeyFrame::bestCovisible(size_t n) const {
   return best;
 }
 
+KeyFrame* KeyFrame::bestOlderCovisible() const {
+  for (KeyFrame* kf : bestCovisible(covisibility.size()))
+    if (kf->id < id) return kf;
+  return nullptr;
+}
+
 }  // namespace ply_slam

@@ -59,8 +59,9 @@ Mapper::Mapper(const PinholeCamera& camera, const MapperOptions& options, Map& m
 }
 
 KeyFrame* Mapper::spanningTreeParent(const KeyFrame& keyframe) const {
-  const std::vector<KeyFrame*> best = keyframe.bestCovisible(1);
-  if (!best.empty()) return best.front();
+  // Never a newer one: a newer parent that later took this one as its own would make a cycle,
+  // and erasing either would then leave a keyframe its own parent (a self edge in the pose graph).
+  if (KeyFrame* best = keyframe.bestOlderCovisible()) return best;
   // A keyframe that shares nothing (after a loss) hangs off the one made before it.
   KeyFrame* before = nullptr;
   for (const auto& kf : map_.keyFrames())

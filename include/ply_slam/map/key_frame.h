@@ -30,6 +30,10 @@ struct KeyFrame {
   int trackedPoints(int min_observations = 1) const;
   // Up to n keyframes sharing the most landmarks with this one, most first.
   std::vector<KeyFrame*> bestCovisible(size_t n) const;
+  // The older keyframe (smaller id) sharing the most landmarks with this one, null if none: a
+  // spanning-tree parent, older so that the tree has no cycle even when the tracker has made
+  // newer keyframes that share more (the mapping thread behind).
+  KeyFrame* bestOlderCovisible() const;
 };
 
 }  // namespace ply_slam
