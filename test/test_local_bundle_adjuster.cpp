@@ -30,31 +30,34 @@ class SmallMap : public testing::Test {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> x(-1.5, 1.5), y(-1.0, 1.0), z(2.0, 5.0);
     for (int k = 0; k < 60; ++k) points_.push_back({x(rng), y(rng), z(rng)});
-    for (int f = 0; f < 4; ++f) {
-      auto kf = std::make_shared<KeyFrame>();
-      kf->T_cw = makePose({0.2, 1.0, 0.1}, 1.5 * f, {-0.1 * f, 0.02 * f, 0.0});
-      map_.addKeyFrame(kf);
-      keyframes_.push_back(kf);
-    }
-    for (const auto& kf : keyframes_) {
-      FrameFeatures& features = kf->features;
-      features.scales = &kScales;
-      for (const Eigen::Vector3d& p : points_) {
-        const Eigen::Vector3d c = kf->T_cw * p;
-        const Eigen::Vector2d uv = config_.camera.project(c);
-        cv::KeyPoint keypoint;
-        keypoint.pt = cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
-        features.keypoints.push_back(keypoint);
-        features.undistorted.push_back(uv);
-        features.rectified.push_back(uv);
-        features.depth.push_back(static_cast<float>(c.z()));
-      }
-      kf->map_points.resize(points_.size());
-    }
+    for (int f = 0; f < 4; ++f)
+      keyframes_.push_back(addKeyFrameSeeingEveryPoint(
+          makePose({0.2, 1.0, 0.1}, 1.5 * f, {-0.1 * f, 0.02 * f, 0.0})));
     for (size_t i = 0; i < points_.size(); ++i) {
       auto point = map_.createMapPoint(points_[i], cv::Mat::zeros(1, 32, CV_8U), 0);
       for (const auto& kf : keyframes_) map_.addObservation(*kf, i, point);
     }
+  }
+
+  // A keyframe with a keypoint at each point's exact pixel and depth (not linked yet).
+  std::shared_ptr<KeyFrame> addKeyFrameSeeingEveryPoint(const Eigen::Isometry3d& T_cw) {
+    auto kf = std::make_shared<KeyFrame>();
+    kf->T_cw = T_cw;
+    map_.addKeyFrame(kf);
+    FrameFeatures& features = kf->features;
+    features.scales = &kScales;
+    for (const Eigen::Vector3d& p : points_) {
+      const Eigen::Vector3d c = kf->T_cw * p;
+      const Eigen::Vector2d uv = config_.camera.project(c);
+      cv::KeyPoint keypoint;
+      keypoint.pt = cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
+      features.keypoints.push_back(keypoint);
+      features.undistorted.push_back(uv);
+      features.rectified.push_back(uv);
+      features.depth.push_back(static_cast<float>(c.z()));
+    }
+    kf->map_points.resize(points_.size());
+    return kf;
   }
 
   SystemConfig config_;
@@ -129,6 +132,39 @@ TEST_F(SmallMap, ASolveAskedToStopReportsIt) {
   EXPECT_FALSE(adjuster.solve(window, &abandon));
   abandon = false;
   EXPECT_TRUE(adjuster.solve(window, &abandon));
+}
+
+// On the mapping thread the whole map's copy lets go of the lock between pieces; a keyframe
+// the tracker makes meanwhile sees the window's landmarks but stays out of it.
+TEST_F(SmallMap, AWholeMapGatheredInPiecesLeavesOutKeyFramesMadeMeanwhile) {
+  const Eigen::Isometry3d truth = keyframes_[3]->T_cw;
+  keyframes_[3]->T_cw = makePose({1, 0, 0}, 0.5, {0.01, -0.01, 0.02}) * truth;
+  const LocalBundleAdjuster adjuster(config_.camera, config_.mapping);
+  const BundleWindow whole = adjuster.gatherAll(map_, 10);
+
+  int calls = 0;
+  std::shared_ptr<KeyFrame> made;
+  BundleWindow pieces = adjuster.gatherAll(map_, 10, [&] {
+    if (++calls != 2) return;  // after the second keyframe's landmarks
+    made = addKeyFrameSeeingEveryPoint(makePose({0, 1, 0}, 2.0, {-0.2, 0.0, 0.0}) * truth);
+    for (size_t i = 0; i < points_.size(); ++i) map_.addObservation(*made, i, map_.mapPoints()[i]);
+  });
+  EXPECT_EQ(calls, 4 + 60);  // after each keyframe's landmarks and each landmark's observations
+  ASSERT_TRUE(made);
+  EXPECT_EQ(map_.mapPoints()[0]->observations(), 5);
+  ASSERT_EQ(pieces.poses.size(), whole.poses.size());
+  for (size_t i = 0; i < whole.poses.size(); ++i)
+    EXPECT_EQ(pieces.poses[i].keyframe, whole.poses[i].keyframe);
+  ASSERT_EQ(pieces.observations.size(), whole.observations.size());
+  for (size_t i = 0; i < whole.observations.size(); ++i) {
+    EXPECT_EQ(pieces.observations[i].pose, whole.observations[i].pose);
+    EXPECT_EQ(pieces.observations[i].point, whole.observations[i].point);
+  }
+  EXPECT_EQ(pieces.points, whole.points);
+  adjuster.solve(pieces);
+  adjuster.apply(map_, pieces);
+  EXPECT_LT((keyframes_[3]->T_cw.translation() - truth.translation()).norm(), 1e-4);
+  EXPECT_EQ(map_.mapPoints()[0]->observations(), 5);  // the new keyframe's links stay
 }
 
 // The global BA after a loop runs beside the mapping side: a keyframe made meanwhile, and the

@@ -15,6 +15,12 @@ std::map<long, int> covisibilityById(const KeyFrame& keyframe) {
   return ids;
 }
 
+// The keyframe and those it shares landmarks with, into `out` by id (each once).
+void addLinked(const KeyFrame& keyframe, std::map<long, const KeyFrame*>& out) {
+  out.emplace(keyframe.id, &keyframe);
+  for (const auto& [other, shared] : keyframe.covisibility) out.emplace(other->id, other);
+}
+
 }  // namespace
 
 LoopCloser::LoopCloser(LoopDetector detector, const PinholeCamera& camera,
@@ -34,7 +40,9 @@ LoopCloser::LoopCloser(LoopDetector detector, const PinholeCamera& camera,
 bool LoopCloser::addKeyFrame(const KeyFrame& keyframe, LoopKeyFrame described) {
   std::lock_guard<std::mutex> lock(detector_mutex_);
   detector_.addKeyFrame(std::move(described));
-  syncCovisibilityLocked(keyframe);
+  std::map<long, const KeyFrame*> linked;
+  addLinked(keyframe, linked);
+  syncCovisibilityLocked(linked);
   return last_loop_keyframe_ < 0 ||
          keyframe.id - last_loop_keyframe_ > options_.min_keyframes_between;
 }
@@ -63,8 +71,11 @@ std::optional<LoopCorrection> LoopCloser::close(KeyFrame& keyframe, const LoopDe
   std::lock_guard<std::mutex> lock(detector_mutex_);
   last_loop_keyframe_ = keyframe.id;
   ++counts_.corrected;
-  // The fusion linked the two sides: they are no loop candidates of each other any more.
-  for (const auto& [kf, shared] : keyframe.covisibility) syncCovisibilityLocked(*kf);
+  // The fusion linked the two sides: they are no loop candidates of each other any more. Links
+  // changed around each of the query's neighbours; every keyframe concerned is synced once.
+  std::map<long, const KeyFrame*> changed;
+  for (const auto& [kf, shared] : keyframe.covisibility) addLinked(*kf, changed);
+  syncCovisibilityLocked(changed);
   return correction;
 }
 
@@ -79,16 +90,16 @@ std::vector<long> LoopCloser::recognise(const cv::Mat& orb_descriptors, size_t m
 }
 
 void LoopCloser::syncCovisibility(const KeyFrame& keyframe) {
+  std::map<long, const KeyFrame*> linked;
+  addLinked(keyframe, linked);
   std::lock_guard<std::mutex> lock(detector_mutex_);
-  syncCovisibilityLocked(keyframe);
+  syncCovisibilityLocked(linked);
 }
 
-void LoopCloser::syncCovisibilityLocked(const KeyFrame& keyframe) {
-  std::vector<const KeyFrame*> linked{&keyframe};
-  for (const auto& [other, shared] : keyframe.covisibility) linked.push_back(other);
-  for (const KeyFrame* kf : linked) {
+void LoopCloser::syncCovisibilityLocked(const std::map<long, const KeyFrame*>& keyframes) {
+  for (const auto& [id, kf] : keyframes) {
     try {
-      detector_.setCovisibility(kf->id, covisibilityById(*kf));
+      detector_.setCovisibility(id, covisibilityById(*kf));
     } catch (const std::out_of_range&) {
       // A keyframe the database has not got: made before loop closure was switched on, or by
       // the tracker while the mapping thread works on an older one (it syncs when added).

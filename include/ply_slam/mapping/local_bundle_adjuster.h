@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 
 #include "ply_slam/common/pinhole_camera.h"
@@ -36,8 +37,11 @@ class LocalBundleAdjuster {
   // The window around `keyframe`: it and its best covisible keyframes.
   BundleWindow gatherLocal(KeyFrame& keyframe) const;
   // Every keyframe and landmark (the global bundle adjustment after a loop), the first
-  // keyframe fixed.
-  BundleWindow gatherAll(const Map& map, int max_iterations) const;
+  // keyframe fixed. `between`, when given, is called after each keyframe's landmarks and each
+  // landmark's observations were read, and may let go of the map's lock meanwhile: keyframes
+  // made while it was free stay out of the window.
+  BundleWindow gatherAll(const Map& map, int max_iterations,
+                         const std::function<void()>& between = {}) const;
   // Changes only the window's numbers. Returns false, the numbers then half-solved, when
   // `abandon` turned true meanwhile.
   bool solve(BundleWindow& window, const std::atomic<bool>* abandon = nullptr) const;

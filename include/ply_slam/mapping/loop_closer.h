@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -65,7 +66,8 @@ class LoopCloser {
 
  private:
   KeyFrame* keyFrame(long id) const;
-  void syncCovisibilityLocked(const KeyFrame& keyframe);  // database mutex held
+  // The detector's covisibility of each keyframe (by id), from the map's; database mutex held.
+  void syncCovisibilityLocked(const std::map<long, const KeyFrame*>& keyframes);
   // Whether the loop's shift of the query is within the drift the tracker could have gathered
   // since the candidate (LoopCorrectionOptions).
   bool plausible(const KeyFrame& query, const KeyFrame& candidate, const LoopShift& shift) const;
