@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <optional>
+#include <unordered_map>
 
 #include "ply_slam/common/ceres_solver_options.h"
 #include "ply_slam/common/chi_square.h"
-#include "ply_slam/mapping/bundle_window_gatherer.h"
 
 namespace ply_slam {
 namespace {
@@ -46,36 +46,70 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::adjust(Map& map, KeyFrame& keyfr
 BundleWindow LocalBundleAdjuster::gatherLocal(KeyFrame& keyframe) const {
   std::vector<KeyFrame*> keyframes{&keyframe};
   for (KeyFrame* kf : keyframe.bestCovisible(options_.window_keyframes)) keyframes.push_back(kf);
-  return gather(keyframes, options_.bundle_solver.max_iterations);
+  return gather(keyframes, options_.bundle_solver.max_iterations, true, {});
 }
 
 BundleWindow LocalBundleAdjuster::gatherAll(const Map& map, int max_iterations,
                                             const std::function<void()>& between) const {
   const auto all = map.keyFrames();
-  // The window's keyframes are those of now: keyframes the tracker makes while `between` has
-  // let go of the lock see some of its landmarks, but stay out.
-  BundleWindowGatherer gatherer(camera_, max_iterations, false);
-  for (const auto& kf : all) gatherer.addKeyFrame(kf.get());
-  for (const auto& kf : all) {
-    gatherer.addLandmarksOf(*kf);
-    if (between) between();
-  }
-  for (size_t k = 0; k < gatherer.landmarks(); ++k) {
-    gatherer.addObservationsOf(k);
-    if (between) between();
-  }
-  BundleWindow window = gatherer.take();
+  std::vector<KeyFrame*> keyframes;
+  for (const auto& kf : all) keyframes.push_back(kf.get());
+  // Every keyframe of now is in: an outsider was made while `between` had let go of the lock.
+  BundleWindow window = gather(keyframes, max_iterations, false, between);
   window.keyframes = all;
   return window;
 }
 
 BundleWindow LocalBundleAdjuster::gather(const std::vector<KeyFrame*>& keyframes,
-                                         int max_iterations) const {
-  BundleWindowGatherer gatherer(camera_, max_iterations, true);
-  for (KeyFrame* kf : keyframes) gatherer.addKeyFrame(kf);
-  for (KeyFrame* kf : keyframes) gatherer.addLandmarksOf(*kf);
-  for (size_t k = 0; k < gatherer.landmarks(); ++k) gatherer.addObservationsOf(k);
-  return gatherer.take();
+                                         int max_iterations, bool outsiders_fixed,
+                                         const std::function<void()>& between) const {
+  // Filled in a fixed order so that the same map gives the same solution.
+  BundleWindow window;
+  window.max_iterations = max_iterations;
+  std::unordered_map<const KeyFrame*, size_t> pose_index;
+  auto addPose = [&](KeyFrame* kf, bool local) -> std::optional<size_t> {
+    const auto it = pose_index.find(kf);
+    if (it != pose_index.end()) return it->second;
+    if (!local && !outsiders_fixed) return std::nullopt;
+    pose_index.emplace(kf, window.poses.size());
+    window.poses.push_back({kf, toParams(kf->T_cw), local, !local || kf->id == 0});
+    return window.poses.size() - 1;
+  };
+  for (KeyFrame* kf : keyframes) addPose(kf, true);
+
+  // Their landmarks, and every observation of them.
+  std::unordered_map<const MapPoint*, size_t> point_index;
+  for (KeyFrame* kf : keyframes) {
+    for (const auto& p : kf->map_points) {
+      if (!p || p->bad || !point_index.emplace(p.get(), window.points.size()).second) continue;
+      window.landmarks.push_back(p);
+      window.points.push_back({p->position.x(), p->position.y(), p->position.z()});
+    }
+    if (between) between();
+  }
+  for (size_t k = 0; k < window.landmarks.size(); ++k) {
+    const MapPoint& point = *window.landmarks[k];
+    for (const auto& [kf, i] : point.observers) {
+      const std::optional<size_t> pose = addPose(kf, false);
+      if (!pose) continue;
+      BundleWindow::Observation o;
+      o.pose = *pose;
+      o.point = k;
+      o.index = i;
+      const auto& f = kf->features;
+      o.residual.u = f.undistorted[i].x();
+      o.residual.v = f.undistorted[i].y();
+      o.residual.pixel_sigma = f.scale(i);
+      if (f.hasDepth(i)) {
+        o.residual.depth = f.depth[i];
+        o.residual.depth_sigma = std::sqrt(camera_.depth_noise.varianceAgainstMap(f.depth[i]));
+      }
+      o.behind = !PointResidual::inFront(kf->T_cw * point.position);
+      window.observations.push_back(o);
+    }
+    if (between) between();
+  }
+  return window;
 }
 
 double LocalBundleAdjuster::chi2Bound(const PointResidual& residual) const {

@@ -15,10 +15,18 @@ std::map<long, int> covisibilityById(const KeyFrame& keyframe) {
   return ids;
 }
 
+using KeyFramesById = std::map<long, const KeyFrame*>;
+
 // The keyframe and those it shares landmarks with, into `out` by id (each once).
-void addLinked(const KeyFrame& keyframe, std::map<long, const KeyFrame*>& out) {
+void addLinked(const KeyFrame& keyframe, KeyFramesById& out) {
   out.emplace(keyframe.id, &keyframe);
   for (const auto& [other, shared] : keyframe.covisibility) out.emplace(other->id, other);
+}
+
+KeyFramesById linkedTo(const KeyFrame& keyframe) {
+  KeyFramesById linked;
+  addLinked(keyframe, linked);
+  return linked;
 }
 
 }  // namespace
@@ -40,9 +48,7 @@ LoopCloser::LoopCloser(LoopDetector detector, const PinholeCamera& camera,
 bool LoopCloser::addKeyFrame(const KeyFrame& keyframe, LoopKeyFrame described) {
   std::lock_guard<std::mutex> lock(detector_mutex_);
   detector_.addKeyFrame(std::move(described));
-  std::map<long, const KeyFrame*> linked;
-  addLinked(keyframe, linked);
-  syncCovisibilityLocked(linked);
+  syncCovisibilityLocked(linkedTo(keyframe));
   return last_loop_keyframe_ < 0 ||
          keyframe.id - last_loop_keyframe_ > options_.min_keyframes_between;
 }
@@ -73,7 +79,7 @@ std::optional<LoopCorrection> LoopCloser::close(KeyFrame& keyframe, const LoopDe
   ++counts_.corrected;
   // The fusion linked the two sides: they are no loop candidates of each other any more. Links
   // changed around each of the query's neighbours; every keyframe concerned is synced once.
-  std::map<long, const KeyFrame*> changed;
+  KeyFramesById changed;
   for (const auto& [kf, shared] : keyframe.covisibility) addLinked(*kf, changed);
   syncCovisibilityLocked(changed);
   return correction;
@@ -90,8 +96,7 @@ std::vector<long> LoopCloser::recognise(const cv::Mat& orb_descriptors, size_t m
 }
 
 void LoopCloser::syncCovisibility(const KeyFrame& keyframe) {
-  std::map<long, const KeyFrame*> linked;
-  addLinked(keyframe, linked);
+  const KeyFramesById linked = linkedTo(keyframe);
   std::lock_guard<std::mutex> lock(detector_mutex_);
   syncCovisibilityLocked(linked);
 }

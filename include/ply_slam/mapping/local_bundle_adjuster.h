@@ -51,9 +51,11 @@ class LocalBundleAdjuster {
   LocalBundleAdjustmentStats apply(Map& map, const BundleWindow& window) const;
 
  private:
-  // The keyframes' poses and every landmark they see; other keyframes that see those
-  // landmarks, and the first keyframe, enter fixed.
-  BundleWindow gather(const std::vector<KeyFrame*>& keyframes, int max_iterations) const;
+  // The keyframes' poses and every landmark they see, the first keyframe fixed; other keyframes
+  // that see those landmarks enter fixed when `outsiders_fixed`, else their observations stay
+  // out. `between` as in gatherAll.
+  BundleWindow gather(const std::vector<KeyFrame*>& keyframes, int max_iterations,
+                      bool outsiders_fixed, const std::function<void()>& between) const;
   double chi2Bound(const PointResidual& residual) const;
 
   const PinholeCamera camera_;
