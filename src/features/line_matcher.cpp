@@ -12,7 +12,6 @@ namespace ply_slam {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinProjectionDepth = 0.05;  // m; endpoints nearer (or behind) do not project
 
 }  // namespace
@@ -39,7 +38,7 @@ struct LineMatcher::Observed {
 LineMatcher::LineMatcher(const LineOptions& params, const PinholeCamera& camera)
     : params_(params),
       camera_(camera),
-      cos_max_angle_(std::cos(params.match_angle_deg * kPi / 180.0)) {}
+      cos_max_angle_(std::cos(params.match_angle_deg * M_PI / 180.0)) {}
 
 bool LineMatcher::projectedPasses(const Projected& p) const {
   if (p.length < 1.0) return false;

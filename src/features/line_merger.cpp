@@ -10,8 +10,6 @@ namespace ply_slam {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // One segment covering both: the line fitted to the four endpoints, each weighted by the
 // length of its segment (a long piece is better located than a short one), clipped to the
 // extreme endpoint projections. Keeps a's orientation; raw endpoints come from the pieces
@@ -43,7 +41,7 @@ LineFeature join(const LineFeature& a, const LineFeature& b) {
 }  // namespace
 
 LineMerger::LineMerger(const LineOptions& params)
-    : max_angle_rad_(params.merge_angle_deg * kPi / 180.0),
+    : max_angle_rad_(params.merge_angle_deg * M_PI / 180.0),
       max_distance_px_(params.merge_distance_px),
       max_gap_px_(params.merge_gap_px) {}
 

@@ -8,7 +8,6 @@
 namespace ply_slam {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kWavesPerAxis = 3;
 // Hand-held motion: the body sways slowly, the hand turns faster (hertz).
 constexpr double kMinHz[2] = {0.08, 0.2}, kMaxHz[2] = {0.5, 1.0};  // position, rotation
@@ -51,7 +50,7 @@ Eigen::Vector2d Circuit::cornerOffset(double s) const {
   // Simpson's rule over the heading's direction: the integrand is smooth, 64 intervals leave
   // errors far below a micrometre, and every corner uses the same rule, so the walk closes.
   constexpr int kIntervals = 64;
-  auto f = [&](double x) { return direction(0.5 * kPi * turnShare(x / corner_length_)); };
+  auto f = [&](double x) { return direction(0.5 * M_PI * turnShare(x / corner_length_)); };
   const double h = s / kIntervals;
   Eigen::Vector2d sum = f(0.0) + f(s);
   for (int k = 1; k < kIntervals; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(k * h);
@@ -65,7 +64,7 @@ Circuit::Place Circuit::placeIn(const Piece& piece, double s) const {
     return place;
   }
   place.position += Eigen::Rotation2Dd(place.heading) * cornerOffset(s);
-  place.heading += 0.5 * kPi * turnShare(s / piece.length);
+  place.heading += 0.5 * M_PI * turnShare(s / piece.length);
   return place;
 }
 
@@ -77,7 +76,7 @@ Circuit::Place Circuit::at(double s) const {
 }
 
 // The smoothstep's steepest slope is 1.5 at the middle of the turn.
-double Circuit::maxCurvature() const { return 1.5 * 0.5 * kPi / corner_length_; }
+double Circuit::maxCurvature() const { return 1.5 * 0.5 * M_PI / corner_length_; }
 
 CameraPath::CameraPath(const CameraPathSpec& spec, int frames, double fps, bool loop, uint64_t seed)
     : spec_(spec), frames_(frames), fps_(fps), loop_(loop) {
@@ -96,8 +95,8 @@ CameraPath::CameraPath(const CameraPathSpec& spec, int frames, double fps, bool 
       double hz = kMinHz[axis / 3] + band * (k + rng.uniform(0.0, 1.0));
       // Periodic path: whole cycles over the sequence (at least one).
       if (loop) hz = std::max(1.0, std::round(hz * duration_)) / duration_;
-      w.omega = 2.0 * kPi * hz;
-      w.phase = rng.uniform(0.0, 2.0 * kPi);
+      w.omega = 2.0 * M_PI * hz;
+      w.phase = rng.uniform(0.0, 2.0 * M_PI);
       w.amplitude = rng.uniform(0.3, 1.0);
       weights.push_back(w.amplitude);
       waves_[axis].push_back(w);
@@ -146,7 +145,7 @@ Eigen::Vector3d CameraPath::drift(double t) const {
   if (loop_) {
     // Out and back with the same mean speed: D (1 - cos(2 pi t / T)) / 2 has mean |v| 2D / T.
     const double distance = std::min(0.5 * speed * duration_, spec_.max_drift);
-    return dir * distance * 0.5 * (1.0 - std::cos(2.0 * kPi * t / duration_));
+    return dir * distance * 0.5 * (1.0 - std::cos(2.0 * M_PI * t / duration_));
   }
   const double distance = std::min(speed * duration_, spec_.max_drift);
   return dir * distance * (t / duration_);

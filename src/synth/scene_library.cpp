@@ -13,7 +13,6 @@ namespace ply_slam {
 namespace {
 
 using Eigen::Vector3d;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kPictureOffset = 0.015;   // m a picture stands off its wall
 constexpr double kDoorLeafOffset = 0.003;  // m a door leaf stands off its wall
 
@@ -206,7 +205,7 @@ void addWalkers(Assembler& a, int count, const std::vector<Walker::Path>& loops)
   for (int i = 0; i < count; ++i) {
     Walker::Path path = loops[i % n_loops];
     const int on_loop = (count - 1 - i % n_loops) / n_loops + 1;
-    const double length = 2.0 * path.straight + 2.0 * kPi * path.radius;
+    const double length = 2.0 * path.straight + 2.0 * M_PI * path.radius;
     path.start += (i / n_loops) * length / on_loop;
     const auto& person = kPeople[i % 2];
     a.walker(i + 1, path, person.file, person.crop);
@@ -310,11 +309,11 @@ SceneSetup office(const std::string& dir, int walkers, bool textured) {
   // People walk two loops between the camera and the furniture.
   Walker::Path near_loop, far_loop;
   near_loop.centre = {3.0, 2.7};
-  near_loop.heading = 0.5 * kPi;
+  near_loop.heading = 0.5 * M_PI;
   near_loop.straight = 1.5;
   near_loop.radius = 0.5;
   far_loop.centre = {4.3, 3.1};
-  far_loop.heading = -0.5 * kPi;
+  far_loop.heading = -0.5 * M_PI;
   far_loop.straight = 1.6;
   far_loop.radius = 0.4;
   far_loop.start = 1.0;

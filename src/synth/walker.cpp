@@ -6,18 +6,15 @@
 #include "ply_slam/synth/quad_builder.h"
 
 namespace ply_slam {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 Walker::Walker(int instance, const Path& path, const Eigen::Vector3d& size,
                const SurfaceMaterial& sides, const SurfaceMaterial& top)
     : instance_(instance), path_(path), size_(size), sides_(sides), top_(top) {}
 
-double Walker::pathLength() const { return 2.0 * path_.straight + 2.0 * kPi * path_.radius; }
+double Walker::pathLength() const { return 2.0 * path_.straight + 2.0 * M_PI * path_.radius; }
 
 Eigen::Isometry3d Walker::pose(double t) const {
-  const double L = path_.straight, r = path_.radius, arc = kPi * r;
+  const double L = path_.straight, r = path_.radius, arc = M_PI * r;
   double s = std::fmod(path_.start + path_.speed * t, pathLength());
   if (s < 0) s += pathLength();
   // Position and heading in the loop's own frame: the first straight runs along +x at y = -r.
@@ -27,16 +24,16 @@ Eigen::Isometry3d Walker::pose(double t) const {
     p = {-0.5 * L + s, -r};
     yaw = 0.0;
   } else if (s < L + arc) {
-    const double a = -0.5 * kPi + (s - L) / r;
+    const double a = -0.5 * M_PI + (s - L) / r;
     p = {0.5 * L + r * std::cos(a), r * std::sin(a)};
-    yaw = a + 0.5 * kPi;
+    yaw = a + 0.5 * M_PI;
   } else if (s < 2 * L + arc) {
     p = {0.5 * L - (s - L - arc), r};
-    yaw = kPi;
+    yaw = M_PI;
   } else {
-    const double a = 0.5 * kPi + (s - 2 * L - arc) / r;
+    const double a = 0.5 * M_PI + (s - 2 * L - arc) / r;
     p = {-0.5 * L + r * std::cos(a), r * std::sin(a)};
-    yaw = a + 0.5 * kPi;
+    yaw = a + 0.5 * M_PI;
   }
   const Eigen::Rotation2Dd heading(path_.heading);
   const Eigen::Vector2d world = path_.centre + heading * p;
