@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "ply_slam/map/by_id.h"
+#include "ply_slam/map/landmark_values.h"
+
 namespace ply_slam {
 
 std::shared_ptr<KeyFrame> Map::addKeyFrame(std::shared_ptr<KeyFrame> keyframe) {
@@ -27,6 +30,24 @@ void Map::adopt(std::vector<std::shared_ptr<KeyFrame>> keyframes,
   lines_ = std::move(lines);
 }
 
+void Map::adoptKeyFrame(std::shared_ptr<KeyFrame> keyframe) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  next_keyframe_id_ = std::max(next_keyframe_id_, keyframe->id + 1);
+  keyframes_.push_back(std::move(keyframe));
+}
+
+void Map::adoptPoint(std::shared_ptr<MapPoint> point) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  next_point_id_ = std::max(next_point_id_, point->id + 1);
+  points_.push_back(std::move(point));
+}
+
+void Map::adoptLine(std::shared_ptr<MapLine> line) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  next_line_id_ = std::max(next_line_id_, line->id + 1);
+  lines_.push_back(std::move(line));
+}
+
 std::shared_ptr<MapPoint> Map::createMapPoint(const Eigen::Vector3d& position,
                                               const cv::Mat& descriptor, long keyframe_id) {
   auto point = std::make_shared<MapPoint>();
@@ -42,6 +63,7 @@ std::shared_ptr<MapPoint> Map::createMapPoint(const Eigen::Vector3d& position,
 void Map::addObservation(KeyFrame& keyframe, size_t index, const std::shared_ptr<MapPoint>& point) {
   std::lock_guard<std::mutex> lock(mutex_);
   addObservationLocked(keyframe, index, point);
+  note({MapJournal::Change::kAddObservation, keyframe.id, point->id, -1, index});
 }
 
 void Map::addObservationLocked(KeyFrame& keyframe, size_t index,
@@ -57,7 +79,9 @@ void Map::addObservationLocked(KeyFrame& keyframe, size_t index,
 
 void Map::removeObservation(KeyFrame& keyframe, size_t index) {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (!keyframe.map_points[index]) return;
   removeObservationLocked(keyframe, index);
+  note({MapJournal::Change::kRemoveObservation, keyframe.id, -1, -1, index});
 }
 
 void Map::removeObservationLocked(KeyFrame& keyframe, size_t index) {
@@ -78,6 +102,12 @@ void Map::removeObservationLocked(KeyFrame& keyframe, size_t index) {
 
 void Map::replace(const std::shared_ptr<MapPoint>& loser, const std::shared_ptr<MapPoint>& winner) {
   std::lock_guard<std::mutex> lock(mutex_);
+  replaceLocked(loser, winner);
+  note({MapJournal::Change::kReplace, -1, loser->id, winner->id});
+}
+
+void Map::replaceLocked(const std::shared_ptr<MapPoint>& loser,
+                        const std::shared_ptr<MapPoint>& winner) {
   const auto observers = loser->observers;
   for (const auto& o : observers) {
     removeObservationLocked(*o.keyframe, o.index);
@@ -126,6 +156,7 @@ std::vector<long> Map::takeRemovedLines() {
 void Map::erasePoint(const std::shared_ptr<MapPoint>& point) {
   std::lock_guard<std::mutex> lock(mutex_);
   erasePointLocked(*point);
+  note({MapJournal::Change::kErasePoint, -1, point->id});
 }
 
 void Map::erasePointLocked(MapPoint& point) {
@@ -139,6 +170,13 @@ void Map::erasePointLocked(MapPoint& point) {
 
 std::shared_ptr<KeyFrame> Map::eraseKeyFrame(KeyFrame& keyframe, int min_point_observers) {
   std::lock_guard<std::mutex> lock(mutex_);
+  auto erased = eraseKeyFrameLocked(keyframe, min_point_observers);
+  if (erased)
+    note({MapJournal::Change::kEraseKeyFrame, keyframe.id, -1, -1, 0, min_point_observers});
+  return erased;
+}
+
+std::shared_ptr<KeyFrame> Map::eraseKeyFrameLocked(KeyFrame& keyframe, int min_point_observers) {
   const auto it = std::find_if(keyframes_.begin(), keyframes_.end(),
                                [&](const auto& kf) { return kf.get() == &keyframe; });
   if (it == keyframes_.end() || it == keyframes_.begin() || !keyframe.parent) return nullptr;
@@ -149,6 +187,58 @@ std::shared_ptr<KeyFrame> Map::eraseKeyFrame(KeyFrame& keyframe, int min_point_o
   erased->parent = nullptr;
   erased->bad = true;
   return erased;
+}
+
+void Map::journalTo(MapJournal* journal) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  journal_ = journal;
+}
+
+void Map::note(const MapJournal::Entry& entry) {
+  if (journal_) journal_->entries.push_back(entry);
+}
+
+void Map::replay(const MapJournal& journal) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto keyframes = byId(keyframes_);
+  const auto points = byId(points_);
+  for (const auto& e : journal.entries) {
+    const auto kf = keyframes.find(e.keyframe);
+    const auto point = points.find(e.point);
+    const bool has_kf = kf != keyframes.end(), has_point = point != points.end();
+    using Change = MapJournal::Change;
+    if (e.change == Change::kAddObservation && has_kf && has_point) {
+      addObservationLocked(*kf->second, e.index, point->second);
+    } else if (e.change == Change::kRemoveObservation && has_kf) {
+      removeObservationLocked(*kf->second, e.index);
+    } else if (e.change == Change::kReplace && has_point && points.count(e.winner)) {
+      replaceLocked(point->second, points.at(e.winner));
+    } else if (e.change == Change::kErasePoint && has_point) {
+      erasePointLocked(*point->second);
+    } else if (e.change == Change::kEraseKeyFrame && has_kf) {
+      eraseKeyFrameLocked(*kf->second, e.min_point_observers);
+    }
+  }
+}
+
+void Map::apply(const MapUpdate& update) {
+  replay(update.journal);
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto keyframes = byId(keyframes_);
+  for (const auto& pose : update.keyframes)
+    if (const auto kf = keyframes.find(pose.id); kf != keyframes.end()) {
+      kf->second->T_cw = pose.T_wc.inverse();
+      const auto parent = keyframes.find(pose.parent);
+      kf->second->parent = parent != keyframes.end() ? parent->second.get() : nullptr;
+    }
+  const auto points = byId(points_);
+  for (const auto& values : update.points)
+    if (const auto p = points.find(values.id); p != points.end()) setValues(*p->second, values);
+  const auto lines = byId(lines_);
+  for (const auto& values : update.lines)
+    if (const auto l = lines.find(values.id); l != lines.end()) setValues(*l->second, values);
+  removeBad(points_, removed_points_);
+  removeBad(lines_, removed_lines_);
 }
 
 void Map::unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers) {

@@ -2,7 +2,23 @@
 
 #include <cmath>
 
+#include "ply_slam/map/by_id.h"
+
 namespace ply_slam {
+namespace {
+
+// A point's state without its links to keyframes (they belong to one copy of the map).
+std::shared_ptr<const MapPoint> unlinkedCopy(const MapPoint& point) {
+  auto copy = std::make_shared<MapPoint>(point);
+  copy->observers.clear();
+  return copy;
+}
+
+void fuse(MapLine& line, const TrackerReport::LineFit& fit) {
+  line.fuse(fit.start, fit.end, fit.start_weight, fit.end_weight);
+}
+
+}  // namespace
 
 LandmarkCreator::LandmarkCreator(const PinholeCamera& camera, double max_point_depth,
                                  const LineOptions& lines, Map& map)
@@ -13,14 +29,23 @@ LandmarkCreator::LandmarkCreator(const PinholeCamera& camera, double max_point_d
       map_(map) {}
 
 void LandmarkCreator::countVisible(const std::vector<MapPoint*>& in_view) {
-  for (MapPoint* p : in_view) ++p->visible;
+  for (MapPoint* p : in_view) {
+    ++p->visible;
+    if (report_) ++report_->points[p->id].visible;
+  }
 }
 
 void LandmarkCreator::recordTracked(const Frame& frame, bool fuse_lines) {
   for (const auto& p : frame.map_points)
-    if (p) ++p->found;
+    if (p) {
+      ++p->found;
+      if (report_) ++report_->points[p->id].found;
+    }
   for (const auto& l : frame.map_lines)
-    if (l) ++l->found;
+    if (l) {
+      ++l->found;
+      if (report_) ++report_->lines[l->id];
+    }
   if (fuse_lines) fuseLineFits(frame);
 }
 
@@ -33,6 +58,7 @@ std::shared_ptr<KeyFrame> LandmarkCreator::addKeyFrame(Frame& frame) {
   kf->features.depth_image.release();  // the image stays with the frame only while it is tracked
   kf->map_points.resize(frame.features.size());
   map_.addKeyFrame(kf);
+  if (report_) report_->keyframe = kf->id;
   addPoints(frame, *kf);
   if (lines_enabled_) addLines(frame, *kf);
   return kf;
@@ -54,10 +80,14 @@ void LandmarkCreator::addPoints(Frame& frame, KeyFrame& kf) {
     const bool has_depth = f.hasDepth(i) && f.depth[i] <= max_point_depth_;
     if (p && !frame.outlier[i]) {
       map_.addObservation(kf, i, p);
+      TrackerReport::PointLink link{i, p->id, nullptr};
       // Average the landmark with this keyframe's depth measurement.
-      if (has_depth)
-        p->fuse(T_wc * camera_.backProject(f.undistorted[i], f.depth[i]),
-                pointWeight(f.depth[i], f.scale(i)));
+      if (has_depth) {
+        link.measured = T_wc * camera_.backProject(f.undistorted[i], f.depth[i]);
+        link.weight = pointWeight(f.depth[i], f.scale(i));
+        p->fuse(link.measured, link.weight);
+      }
+      if (report_) report_->point_links.push_back(std::move(link));
       continue;
     }
     if (!has_depth) continue;
@@ -70,6 +100,7 @@ void LandmarkCreator::addPoints(Frame& frame, KeyFrame& kf) {
     point->min_distance = point->max_distance / last_scale;
     point->position_weight = pointWeight(z, f.scale(i));
     map_.addObservation(kf, i, point);
+    if (report_) report_->point_links.push_back({i, point->id, unlinkedCopy(*point)});
     p = point;
     frame.outlier[i] = false;
   }
@@ -86,18 +117,20 @@ void LandmarkCreator::addLines(Frame& frame, KeyFrame& kf) {
     if (l && !frame.line_outlier[i]) {
       ++l->observations;
       kf.map_lines[i] = l;
+      if (report_) report_->line_links.push_back({i, l->id, nullptr});
       continue;
     }
     if (!fit.valid) continue;
     l = map_.createMapLine(T_wc * fit.start, T_wc * fit.end, frame.lines.descriptor(i), kf.id);
-    fuseFit(*l, fit, T_wc);  // its first fit: the weights
+    fuse(*l, worldFit(*l, fit, T_wc));  // its first fit: the weights
     l->observations = 1;
     kf.map_lines[i] = l;
+    if (report_) report_->line_links.push_back({i, l->id, std::make_shared<const MapLine>(*l)});
     frame.line_outlier[i] = false;
   }
 }
 
-void LandmarkCreator::fuseLineFits(const Frame& frame) const {
+void LandmarkCreator::fuseLineFits(const Frame& frame) {
   const DepthNoiseModel& noise = camera_.depth_noise;
   const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
   const double min_cos = std::cos(line_match_angle_deg_ * M_PI / 180.0);
@@ -113,15 +146,70 @@ void LandmarkCreator::fuseLineFits(const Frame& frame) const {
         l.distanceToLine(e) > noise.surfaceGap(fit.end.z()) ||
         std::abs((e - s).normalized().dot((l.end - l.start).normalized())) < min_cos)
       continue;
-    fuseFit(l, fit, T_wc);
+    const TrackerReport::LineFit world = worldFit(l, fit, T_wc);
+    fuse(l, world);
+    if (report_) report_->line_fits.push_back(world);
   }
 }
 
-void LandmarkCreator::fuseFit(MapLine& line, const Line3D& fit,
-                              const Eigen::Isometry3d& T_wc) const {
+TrackerReport::LineFit LandmarkCreator::worldFit(const MapLine& line, const Line3D& fit,
+                                                 const Eigen::Isometry3d& T_wc) const {
   const DepthNoiseModel& noise = camera_.depth_noise;
-  line.fuse(T_wc * fit.start, T_wc * fit.end, 1.0 / noise.variance(fit.start.z()),
-            1.0 / noise.variance(fit.end.z()));
+  return {line.id, T_wc * fit.start, T_wc * fit.end, 1.0 / noise.variance(fit.start.z()),
+          1.0 / noise.variance(fit.end.z())};
+}
+
+std::shared_ptr<KeyFrame> LandmarkCreator::replay(const TrackerReport& report,
+                                                  std::shared_ptr<KeyFrame> keyframe) {
+  const auto points = byId(map_.mapPoints());
+  const auto lines = byId(map_.mapLines());
+  for (const auto& [id, counts] : report.points)
+    if (const auto p = points.find(id); p != points.end()) {
+      p->second->visible += counts.visible;
+      p->second->found += counts.found;
+    }
+  for (const auto& [id, found] : report.lines)
+    if (const auto l = lines.find(id); l != lines.end()) l->second->found += found;
+  for (const auto& fit : report.line_fits)
+    if (const auto l = lines.find(fit.id); l != lines.end()) fuse(*l->second, fit);
+  map_.adoptKeyFrame(keyframe);
+  replayPoints(report.point_links, points, *keyframe);
+  replayLines(report.line_links, lines, *keyframe);
+  return keyframe;
+}
+
+void LandmarkCreator::replayPoints(const std::vector<TrackerReport::PointLink>& links,
+                                   const PointsById& points, KeyFrame& keyframe) {
+  for (const auto& link : links) {
+    std::shared_ptr<MapPoint> point;
+    if (link.created) {
+      point = std::make_shared<MapPoint>(*link.created);
+      map_.adoptPoint(point);
+    } else if (const auto p = points.find(link.id); p != points.end()) {
+      point = p->second;
+    } else {
+      continue;  // gone from this map meanwhile
+    }
+    map_.addObservation(keyframe, link.keypoint, point);
+    if (link.weight > 0.0) point->fuse(link.measured, link.weight);
+  }
+}
+
+void LandmarkCreator::replayLines(const std::vector<TrackerReport::LineLink>& links,
+                                  const LinesById& lines, KeyFrame& keyframe) {
+  for (const auto& link : links) {
+    std::shared_ptr<MapLine> line;
+    if (link.created) {
+      line = std::make_shared<MapLine>(*link.created);
+      map_.adoptLine(line);
+    } else if (const auto l = lines.find(link.id); l != lines.end()) {
+      line = l->second;
+      ++line->observations;
+    } else {
+      continue;
+    }
+    keyframe.map_lines[link.line] = line;
+  }
 }
 
 }  // namespace ply_slam

@@ -166,7 +166,7 @@ LocalBundleAdjustmentStats LocalBundleAdjuster::apply(Map& map, const BundleWind
     MapPoint& point = *window.landmarks[k];
     if (point.bad) continue;  // merged or culled meanwhile
     point.position = Eigen::Vector3d(window.points[k][0], window.points[k][1], window.points[k][2]);
-    if (point.observers.empty()) point.bad = true;
+    if (point.observers.empty()) map.erasePoint(window.landmarks[k]);  // nobody sees it now
   }
   return stats;
 }

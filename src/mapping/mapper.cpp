@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/map/landmark_values.h"
 
 namespace ply_slam {
 namespace {
@@ -169,12 +170,12 @@ MapUpdate Mapper::wholeMap() const {
   update.whole_map = true;
   for (const auto& kf : map_.keyFrames()) {
     update.stamp = std::max(update.stamp, kf->stamp);
-    update.keyframes.push_back({kf->id, kf->T_wc()});
+    update.keyframes.push_back(valuesOf(*kf));
   }
   for (const auto& p : map_.mapPoints())
-    if (!p->bad) update.points.push_back({p->id, p->position});
+    if (!p->bad) update.points.push_back(valuesOf(*p));
   for (const auto& l : map_.mapLines())
-    if (!l->bad) update.lines.push_back({l->id, l->start, l->end});
+    if (!l->bad) update.lines.push_back(valuesOf(*l));
   return update;
 }
 
@@ -187,13 +188,11 @@ MapUpdate Mapper::localUpdate(const KeyFrame& keyframe) const {
     window.push_back(kf);
   std::set<long> points, lines;
   for (const KeyFrame* kf : window) {
-    update.keyframes.push_back({kf->id, kf->T_wc()});
+    update.keyframes.push_back(valuesOf(*kf));
     for (const auto& p : kf->map_points)
-      if (p && !p->bad && points.insert(p->id).second)
-        update.points.push_back({p->id, p->position});
+      if (p && !p->bad && points.insert(p->id).second) update.points.push_back(valuesOf(*p));
     for (const auto& l : kf->map_lines)
-      if (l && !l->bad && lines.insert(l->id).second)
-        update.lines.push_back({l->id, l->start, l->end});
+      if (l && !l->bad && lines.insert(l->id).second) update.lines.push_back(valuesOf(*l));
   }
   return update;
 }

@@ -6,20 +6,27 @@
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
+#include "ply_slam/map/map_journal.h"
 
 namespace ply_slam {
 
-// A point landmark as the mapping side sees it.
+// A point landmark as the mapping side sees it. A copy of the map that tracks in it (the
+// tracker's) needs the rest too (MapPoint's fields of the same names; the visible / found counts
+// are the tracker's, and merges add them up on both sides by the journal); the messages carry
+// the position only.
 struct LandmarkPoint {
   long id = 0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world frame, m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double position_weight = 0.0;
 };
 
-// A 3D line landmark: world-frame segment.
+// A 3D line landmark: world-frame segment (and MapLine's weights, as LandmarkPoint's rest).
 struct LandmarkLine {
   long id = 0;
   Eigen::Vector3d start = Eigen::Vector3d::Zero();
   Eigen::Vector3d end = Eigen::Vector3d::Zero();
+  double start_weight = 0.0, end_weight = 0.0;
 };
 
 // One instance of the keyframe's segmentation; its pixels are those of `label_image` equal
@@ -62,6 +69,7 @@ struct MapUpdate {
   struct KeyFramePose {
     long id = 0;
     Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
+    long parent = -1;  // in the spanning tree; -1: none (the first keyframe)
   };
   double stamp = 0.0;  // of the newest keyframe it accounts for
   std::vector<KeyFramePose> keyframes;
@@ -74,6 +82,9 @@ struct MapUpdate {
   std::vector<long> erased_points;
   // Line landmarks that left the map since the last update (every keyframe that saw them erased).
   std::vector<long> erased_lines;
+  // Who sees what, changed in this order (merges, outliers unlinked, erasures): with the values
+  // above, what a copy of the map needs to follow (Map::apply). The messages do not carry it.
+  MapJournal journal;
 };
 
 }  // namespace ply_slam

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "ply_slam/map/key_frame.h"
+#include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/map/map_journal.h"
 #include "ply_slam/map/map_line.h"
 #include "ply_slam/map/map_point.h"
 
@@ -51,6 +53,24 @@ class Map {
   // the tree's root (the first keyframe) or a keyframe not in the map.
   std::shared_ptr<KeyFrame> eraseKeyFrame(KeyFrame& keyframe, int min_point_observers);
 
+  // Writes every addObservation, removeObservation, replace, erasePoint and eraseKeyFrame that
+  // changed something into `journal` as well, until called with nullptr.
+  void journalTo(MapJournal* journal);
+  // Does here what `journal` says was done to another copy of this map (ids; an entry naming a
+  // keyframe or point this map does not hold is left out). Not journaled again.
+  void replay(const MapJournal& journal);
+
+  // Follows what the mapping side did to its copy of this map: `update`'s journal replayed,
+  // then the poses, tree parents and landmark values it carries set, then the landmarks turned
+  // bad dropped (removeBadLandmarks). Ids this map does not hold are left out.
+  void apply(const MapUpdate& update);
+
+  // A keyframe or landmark made on another copy of the map (LandmarkCreator::replay), its id
+  // kept; later ids continue after it.
+  void adoptKeyFrame(std::shared_ptr<KeyFrame> keyframe);
+  void adoptPoint(std::shared_ptr<MapPoint> point);
+  void adoptLine(std::shared_ptr<MapLine> line);
+
   // Takes a map read from a file (MapFileReader) as it is: ids, links, covisibility and spanning
   // tree kept; the first keyframe is the tree's root. Later ids continue after the largest.
   // Throws std::logic_error when this map is not empty.
@@ -72,6 +92,10 @@ class Map {
   void erasePointLocked(MapPoint& point);
   void unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers);
   void reparentChildrenLocked(KeyFrame& keyframe);
+  void replaceLocked(const std::shared_ptr<MapPoint>& loser,
+                     const std::shared_ptr<MapPoint>& winner);
+  std::shared_ptr<KeyFrame> eraseKeyFrameLocked(KeyFrame& keyframe, int min_point_observers);
+  void note(const MapJournal::Entry& entry);
 
   mutable std::mutex mutex_;
   mutable std::mutex update_mutex_;
@@ -80,6 +104,7 @@ class Map {
   std::vector<std::shared_ptr<MapLine>> lines_;
   std::vector<long> removed_points_;
   std::vector<long> removed_lines_;
+  MapJournal* journal_ = nullptr;
   long next_line_id_ = 0;
   long next_point_id_ = 0;
   long next_keyframe_id_ = 0;

@@ -1,11 +1,13 @@
 #pragma once
 
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/features/line_options.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/map/tracker_report.h"
 #include "ply_slam/tracking/landmark_sink.h"
 
 namespace ply_slam {
@@ -25,15 +27,30 @@ class LandmarkCreator : public LandmarkSink {
   void recordTracked(const Frame& frame, bool fuse_lines) override;
   std::shared_ptr<KeyFrame> addKeyFrame(Frame& frame) override;
 
+  // Writes what the calls above do into `report` (by id) as well, until called with nullptr.
+  void reportTo(TrackerReport* report) { report_ = report; }
+  // Does to this creator's map what `report` says another creator did to its own copy:
+  // counts, line fits, then `keyframe` (that creator's keyframe with its features and pose,
+  // without links; its id kept) with its links and new landmarks (ids kept). Links to a
+  // landmark this map no longer has are left out. Returns the keyframe.
+  std::shared_ptr<KeyFrame> replay(const TrackerReport& report, std::shared_ptr<KeyFrame> keyframe);
+
  private:
   void addPoints(Frame& frame, KeyFrame& keyframe);
   void addLines(Frame& frame, KeyFrame& keyframe);
   // Averages each accepted 3D fit of a tracked frame into the map line it matched as an
   // inlier, where the fit lies on that line.
-  void fuseLineFits(const Frame& frame) const;
-  // Averages fit (camera frame at T_wc) into line, each end weighted by the inverse variance of
+  void fuseLineFits(const Frame& frame);
+  // The fit (camera frame at T_wc) in the world, each end weighted by the inverse variance of
   // its depth.
-  void fuseFit(MapLine& line, const Line3D& fit, const Eigen::Isometry3d& T_wc) const;
+  TrackerReport::LineFit worldFit(const MapLine& line, const Line3D& fit,
+                                  const Eigen::Isometry3d& T_wc) const;
+  using PointsById = std::unordered_map<long, std::shared_ptr<MapPoint>>;
+  using LinesById = std::unordered_map<long, std::shared_ptr<MapLine>>;
+  void replayPoints(const std::vector<TrackerReport::PointLink>& links, const PointsById& points,
+                    KeyFrame& keyframe);
+  void replayLines(const std::vector<TrackerReport::LineLink>& links, const LinesById& lines,
+                   KeyFrame& keyframe);
   // Inverse variance of a point at depth z seen at the scale of pyramid level `scale`: depth
   // noise along the ray, the keypoint's footprint across it.
   double pointWeight(double z, double scale) const;
@@ -43,6 +60,7 @@ class LandmarkCreator : public LandmarkSink {
   const bool lines_enabled_;
   const double line_match_angle_deg_;
   Map& map_;
+  TrackerReport* report_ = nullptr;
 };
 
 }  // namespace ply_slam
