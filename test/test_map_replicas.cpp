@@ -1,14 +1,17 @@
-// Two copies of the map that follow each other, as the tracker's and the mapping side's would in
-// two processes: the tracker's report (TrackerReport: what it did between two keyframes, by id)
-// replayed on a copy as the mapping side left it gives the tracker's map exactly, and the
-// mapping side's update (MapUpdate: its journal of links, merges and erasures, and the values it
-// left) applied to a copy as the tracker left it gives the mapping side's. Real fr1_rpy frames
-// with lines, tracked and mapped as System does in line (fusion, local BA, culling).
+// A copy of the map that follows the tracker by its reports (TrackerReport: what it did between
+// two keyframes, by id) and the mapping side by its updates (MapUpdate: its journal of links,
+// merges and erasures, and the values it left), as the other process of a two-process split
+// would, equals the map: real fr1_rpy frames with lines, and a synthetic corridor walked round
+// to its start with loop closure, tracked and mapped as System does in line (fusion, local BA,
+// culling, loop correction).
 #include <gtest/gtest.h>
 
 #include <iostream>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <stdexcept>
 
+#include "default_vocabularies.h"
 #include "map_copy.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/line_extractor.h"
@@ -16,8 +19,13 @@
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/mapping/mapper.h"
+#include "ply_slam/synth/synthetic_sequence.h"
+#include "ply_slam/synth/synthetic_sequence_writer.h"
+#include "ply_slam/system/key_frame_packet_builder.h"
 #include "ply_slam/tracking/tracker.h"
+#include "pose_test_helpers.h"
 #include "shared_data.h"
+#include "temp_dir.h"
 
 namespace ply_slam {
 namespace {
@@ -32,67 +40,187 @@ std::shared_ptr<KeyFrame> unlinked(const KeyFrame& keyframe) {
   return copy;
 }
 
+// A small map: two keyframes sharing one point, each with one keypoint.
+struct TwoKeyFrames {
+  Map map;
+  std::shared_ptr<KeyFrame> a = std::make_shared<KeyFrame>(), b = std::make_shared<KeyFrame>();
+  std::shared_ptr<MapPoint> point;
+  TwoKeyFrames() {
+    for (auto& kf : {a, b}) {
+      kf->map_points.resize(1);
+      map.addKeyFrame(kf);
+    }
+    point = map.createMapPoint(Eigen::Vector3d(0, 0, 2), cv::Mat(), a->id);
+    map.addObservation(*a, 0, point);
+    map.addObservation(*b, 0, point);
+  }
+};
+
+TEST(MapReplicas, AReportOfAnotherKeyFrameIsRefused) {
+  TwoKeyFrames copy;
+  TrackerReport report;
+  report.keyframe = 5;
+  report.points[copy.point->id].found = 3;
+  auto keyframe = std::make_shared<KeyFrame>();
+  keyframe->id = 6;
+  LandmarkCreator creator(test::makeCamera(), 5.0, LineOptions(), copy.map);
+  EXPECT_THROW(creator.replay(report, keyframe), std::invalid_argument);
+  EXPECT_EQ(copy.map.numKeyFrames(), 2u);
+  EXPECT_EQ(copy.point->found, 0);
+}
+
+TEST(MapReplicas, JournalEntriesNamingWhatTheCopyHasNotAreLeftOut) {
+  TwoKeyFrames original, copy;
+  MapJournal journal;
+  original.map.journalTo(&journal);
+  original.map.removeObservation(*original.b, 0);
+  original.map.removeObservation(*original.b, 0);  // nothing linked: not journaled
+  original.map.erasePoint(original.point);
+  original.map.journalTo(nullptr);
+  ASSERT_EQ(journal.entries.size(), 2u);
+  EXPECT_TRUE(original.point->bad);
+  MapJournal foreign = journal;
+  for (auto& e : foreign.entries) e.keyframe = e.point = 99;  // ids the copy does not hold
+  copy.map.replay(foreign);
+  EXPECT_FALSE(copy.point->bad);
+  EXPECT_EQ(copy.point->observations(), 2);
+  copy.map.replay(journal);
+  EXPECT_TRUE(copy.point->bad);
+  EXPECT_EQ(copy.a->map_points[0], nullptr);
+  EXPECT_EQ(copy.b->covisibility.size(), 0u);
+}
+
+// The corridor walked once round and back to its start (as ply_slam_synth --loop renders it).
+constexpr int kLoopFrames = 600;
+
+// Tracks and maps frames as System does in line, and keeps a copy of the map that follows by
+// the tracker's reports and the mapping side's updates alone (as the other process of a split
+// would), compared with the map every `check_every` keyframes and after each loop closure.
+class ReplicaRun {
+ public:
+  ReplicaRun(const SystemConfig& config, int check_every)
+      : config_(config),
+        check_every_(check_every),
+        extractor_(config.orb),
+        line_extractor_(config.lines),
+        line_fitter_(config.lines, config.camera),
+        mapper_(config.camera, mapperOptions(config), map_),
+        creator_(config.camera, config.tracking.max_point_depth, config.lines, map_),
+        tracker_(config.camera, config.tracking, config.orb, config.lines, map_, creator_) {
+    creator_.reportTo(&report_);
+    mapper_.setCorrectionListener(
+        [this](const Eigen::Isometry3d& correction) { tracker_.applyCorrection(correction); });
+  }
+
+  void process(long i, const RgbdImages& images) {
+    cv::Mat gray;
+    cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
+    Frame frame(i, images.stamp,
+                FrameFeatures::extract(gray, images.depth, config_.camera, extractor_));
+    frame.setLines(
+        FrameLines::extract(gray, images.depth, config_.camera, line_extractor_, line_fitter_));
+    const TrackingResult result = tracker_.track(frame);
+    ASSERT_EQ(result.state, TrackingState::kOk) << "frame " << i;
+    if (!result.new_keyframe) return;
+    ++keyframes;
+    const std::string when = "keyframe of frame " + std::to_string(i);
+    followTracker(*result.new_keyframe, when);
+    if (::testing::Test::HasFatalFailure()) return;
+    const bool loop = followMapper(result.new_keyframe, images, when);
+    if (::testing::Test::HasFatalFailure()) return;
+    if (loop || keyframes % check_every_ == 0) test::expectSameMap(follower_, map_, when, 1e-12);
+  }
+
+  int keyframes = 0, line_fits = 0, fused_depths = 0, changes = 0, culled_keyframes = 0;
+  int loops = 0;
+
+ private:
+  void followTracker(const KeyFrame& keyframe, const std::string& when) {
+    line_fits += static_cast<int>(report_.line_fits.size());
+    for (const auto& link : report_.point_links) fused_depths += link.weight > 0.0;
+    LandmarkCreator(config_.camera, config_.tracking.max_point_depth, config_.lines, follower_)
+        .replay(report_, unlinked(keyframe));
+    report_ = TrackerReport{};
+  }
+
+  // Maps the keyframe as System::mapKeyFrame does; true when it closed a loop.
+  bool followMapper(const std::shared_ptr<KeyFrame>& keyframe, const RgbdImages& images,
+                    const std::string& when) {
+    MapJournal journal;
+    map_.journalTo(&journal);
+    const KeyFrameInsertionStats stats = mapper_.insertKeyFrame(
+        keyframe, [&] { return std::set<long>{tracker_.referenceKeyFrame()->id}; });
+    std::optional<LoopCorrection> loop;
+    if (mapper_.recognisesPlaces())
+      loop = mapper_.closeLoop(
+          *keyframe, makeKeyFramePacket(*keyframe, config_.camera, images, {}, {}, cv::Mat()));
+    map_.journalTo(nullptr);
+    // The whole map after a loop or a global BA written back.
+    MapUpdate update = loop || stats.global_ba_applied ? mapper_.wholeMap() : stats.adjusted;
+    update.journal = std::move(journal);
+    changes += static_cast<int>(update.journal.entries.size());
+    culled_keyframes += static_cast<int>(stats.culled_keyframes.size());
+    loops += loop.has_value();
+    follower_.apply(update);
+    return loop.has_value();
+  }
+
+  const SystemConfig config_;
+  const int check_every_;
+  const OrbExtractor extractor_;
+  const LineExtractor line_extractor_;
+  const LineFitter line_fitter_;
+  Map map_;
+  Mapper mapper_;
+  LandmarkCreator creator_;
+  Tracker tracker_;
+  TrackerReport report_;
+  Map follower_;  // from the reports and updates only
+};
+
 TEST(MapReplicas, FollowTheTrackerByItsReportAndTheMapperByItsUpdate) {
   const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
   SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
   config.lines.enabled = true;
   config.loop.enabled = false;
   const TumSequence sequence(folder);
-  const OrbExtractor extractor(config.orb);
-  const LineExtractor line_extractor(config.lines);
-  const LineFitter line_fitter(config.lines, config.camera);
-
-  Map map;
-  Mapper mapper(config.camera, mapperOptions(config), map);
-  LandmarkCreator creator(config.camera, config.tracking.max_point_depth, config.lines, map);
-  Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map, creator);
-  TrackerReport report;
-  creator.reportTo(&report);
-  std::unique_ptr<Map> mapped = test::copyMap(map);  // as the mapping side left it
-  int keyframes = 0, line_fits = 0, fused_depths = 0, changes = 0, culled_keyframes = 0;
+  ReplicaRun run(config, 1);
   for (size_t i = 0; i < sequence.size() && i < 120; ++i) {
-    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
-    cv::Mat gray;
-    cv::cvtColor(images.rgb, gray, cv::COLOR_BGR2GRAY);
-    Frame frame(static_cast<long>(i), images.stamp,
-                FrameFeatures::extract(gray, images.depth, config.camera, extractor));
-    frame.setLines(
-        FrameLines::extract(gray, images.depth, config.camera, line_extractor, line_fitter));
-    const TrackingResult result = tracker.track(frame);
-    ASSERT_EQ(result.state, TrackingState::kOk) << "frame " << i;
-    if (!result.new_keyframe) continue;
-    ++keyframes;
-    line_fits += static_cast<int>(report.line_fits.size());
-    for (const auto& link : report.point_links) fused_depths += link.weight > 0.0;
-
-    LandmarkCreator replayer(config.camera, config.tracking.max_point_depth, config.lines, *mapped);
-    replayer.replay(report, unlinked(*result.new_keyframe));
-    test::expectSameMap(*mapped, map, "keyframe of frame " + std::to_string(i));
+    run.process(static_cast<long>(i), sequence.load(i, config.camera.depth_factor));
     if (HasFatalFailure()) return;
-
-    report = TrackerReport{};
-    std::unique_ptr<Map> tracked = test::copyMap(map);  // as the tracker left it
-    MapJournal journal;
-    map.journalTo(&journal);
-    const KeyFrameInsertionStats stats = mapper.insertKeyFrame(
-        result.new_keyframe, [&] { return std::set<long>{tracker.referenceKeyFrame()->id}; });
-    map.journalTo(nullptr);
-    MapUpdate update = mapper.localUpdate(*result.new_keyframe);
-    update.journal = std::move(journal);
-    changes += static_cast<int>(update.journal.entries.size());
-    culled_keyframes += static_cast<int>(stats.culled_keyframes.size());
-    tracked->apply(update);
-    test::expectSameMap(*tracked, map, "mapped keyframe of frame " + std::to_string(i), 1e-12);
-    if (HasFatalFailure()) return;
-    mapped = test::copyMap(map);
   }
-  std::cout << keyframes << " keyframes, " << line_fits << " line fits, " << fused_depths
-            << " depths fused into old points; " << changes << " changes journaled, "
-            << culled_keyframes << " keyframes culled\n";
+  std::cout << run.keyframes << " keyframes, " << run.line_fits << " line fits, "
+            << run.fused_depths << " depths fused into old points; " << run.changes
+            << " changes journaled, " << run.culled_keyframes << " keyframes culled\n";
   // The replay had something to do: keyframes, lines fused between them, depths into old points.
-  EXPECT_GE(keyframes, 8);
-  EXPECT_GT(line_fits, 100);
-  EXPECT_GT(fused_depths, 500);
+  EXPECT_GE(run.keyframes, 8);
+  EXPECT_GT(run.line_fits, 100);
+  EXPECT_GT(run.fused_depths, 500);
+}
+
+// Loop corrections (rigid moves, fusion across the loop, the pose graph, the global BA written
+// back) reach the tracker's copy as the whole map's values and the journal of the merges.
+TEST(MapReplicas, FollowTheMapperThroughLoopCorrections) {
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
+  const TempDir dir;
+  SynthOptions options;
+  options.scene = SceneKind::kCorridor;
+  options.frames = kLoopFrames;
+  options.loop = true;
+  writeSyntheticSequence(SyntheticSequence(options), dir.path().string());
+  const TumSequence sequence(dir.path().string());
+  SystemConfig config = loadConfig(dir.file("camera.yaml"));
+  config.lines.enabled = true;
+  config.loop.enabled = true;
+  ReplicaRun run(config, 25);
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    run.process(static_cast<long>(i), sequence.load(i, config.camera.depth_factor));
+    if (HasFatalFailure()) return;
+  }
+  std::cout << run.keyframes << " keyframes, " << run.loops << " loops closed, " << run.changes
+            << " changes journaled, " << run.culled_keyframes << " keyframes culled\n";
+  EXPECT_GE(run.loops, 1);
 }
 
 }  // namespace

@@ -5,6 +5,12 @@
 
 namespace ply_slam {
 
+bool MapPoint::seenBy(const KeyFrame* keyframe) const {
+  for (const auto& o : observers)
+    if (o.keyframe == keyframe) return true;
+  return false;
+}
+
 int MapPoint::predictLevel(double distance, double log_scale, int num_levels) const {
   const int level = static_cast<int>(std::ceil(std::log(max_distance / distance) / log_scale));
   return std::clamp(level, 0, num_levels - 1);

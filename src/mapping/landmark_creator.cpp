@@ -1,6 +1,8 @@
 #include "ply_slam/mapping/landmark_creator.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "ply_slam/map/by_id.h"
 
@@ -161,6 +163,10 @@ TrackerReport::LineFit LandmarkCreator::worldFit(const MapLine& line, const Line
 
 std::shared_ptr<KeyFrame> LandmarkCreator::replay(const TrackerReport& report,
                                                   std::shared_ptr<KeyFrame> keyframe) {
+  if (report.keyframe != keyframe->id)
+    throw std::invalid_argument("LandmarkCreator::replay: the report is of keyframe " +
+                                std::to_string(report.keyframe) + ", not " +
+                                std::to_string(keyframe->id));
   const auto points = byId(map_.mapPoints());
   const auto lines = byId(map_.mapLines());
   for (const auto& [id, counts] : report.points)

@@ -8,15 +8,6 @@
 #include "ply_slam/tracking/projection_matcher.h"
 
 namespace ply_slam {
-namespace {
-
-bool observedBy(const MapPoint& p, const KeyFrame* kf) {
-  for (const auto& o : p.observers)
-    if (o.keyframe == kf) return true;
-  return false;
-}
-
-}  // namespace
 
 LandmarkFuser::LandmarkFuser(const PinholeCamera& camera, const OrbOptions& orb,
                              const LocalMappingOptions& options)
@@ -54,7 +45,7 @@ int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
   const int num_levels = num_levels_;
   int changes = 0;
   for (const auto& p : points) {
-    if (p->bad || observedBy(*p, &target)) continue;
+    if (p->bad || p->seenBy(&target)) continue;
     const Eigen::Vector3d pc = target.T_cw * p->position;
     if (pc.z() <= 0.05) continue;
     const Eigen::Vector2d uv = cam.project(pc);

@@ -53,6 +53,23 @@ class LockPauses : public CorrectionPauses {
 // one frame (the copy took 47 ms in one piece on the 1 500-frame ring).
 constexpr double kGatherHoldMs = 5.0;
 
+// What local BA moved, as it is now (KeyFrameInsertionStats::adjusted). Not the window taken
+// again afterwards: fusion and culling change the new keyframe's best covisible keyframes.
+MapUpdate adjustedBy(const BundleWindow& window, double stamp) {
+  MapUpdate update;
+  update.stamp = stamp;
+  std::set<long> lines;
+  for (const auto& pose : window.poses) {
+    if (!pose.local || pose.keyframe->bad) continue;
+    update.keyframes.push_back(valuesOf(*pose.keyframe));
+    for (const auto& l : pose.keyframe->map_lines)
+      if (l && !l->bad && lines.insert(l->id).second) update.lines.push_back(valuesOf(*l));
+  }
+  for (const auto& p : window.landmarks)
+    if (!p->bad) update.points.push_back(valuesOf(*p));
+  return update;
+}
+
 }  // namespace
 
 Mapper::Mapper(const PinholeCamera& camera, const MapperOptions& options, Map& map,
@@ -104,6 +121,7 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   if (loop_closer_)
     for (long id : stats.culled_keyframes) loop_closer_->removeKeyFrame(id);
   map_.removeBadLandmarks();
+  stats.adjusted = adjustedBy(window, keyframe->stamp);
   return stats;
 }
 
@@ -176,24 +194,6 @@ MapUpdate Mapper::wholeMap() const {
     if (!p->bad) update.points.push_back(valuesOf(*p));
   for (const auto& l : map_.mapLines())
     if (!l->bad) update.lines.push_back(valuesOf(*l));
-  return update;
-}
-
-MapUpdate Mapper::localUpdate(const KeyFrame& keyframe) const {
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
-  MapUpdate update;
-  update.stamp = keyframe.stamp;
-  std::vector<const KeyFrame*> window{&keyframe};
-  for (const KeyFrame* kf : keyframe.bestCovisible(options_.local.window_keyframes))
-    window.push_back(kf);
-  std::set<long> points, lines;
-  for (const KeyFrame* kf : window) {
-    update.keyframes.push_back(valuesOf(*kf));
-    for (const auto& p : kf->map_points)
-      if (p && !p->bad && points.insert(p->id).second) update.points.push_back(valuesOf(*p));
-    for (const auto& l : kf->map_lines)
-      if (l && !l->bad && lines.insert(l->id).second) update.lines.push_back(valuesOf(*l));
-  }
   return update;
 }
 

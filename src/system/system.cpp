@@ -187,9 +187,8 @@ MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
   }
   if (auto correction = mapper_.closeLoop(keyframe, *out.packet))
     out.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
-  MapUpdate update = out.loop_correction || mapped.global_ba_applied
-                         ? mapper_.wholeMap()
-                         : mapper_.localUpdate(keyframe);
+  MapUpdate update =
+      out.loop_correction || mapped.global_ba_applied ? mapper_.wholeMap() : mapped.adjusted;
   update.erased_keyframes = mapped.culled_keyframes;
   update.erased_points = map_.takeRemovedPoints();
   update.erased_lines = map_.takeRemovedLines();

@@ -30,6 +30,7 @@ struct MapPoint {
   std::shared_ptr<MapPoint> replaced_by;  // set when merged into a duplicate of itself
 
   int observations() const { return static_cast<int>(observers.size()); }
+  bool seenBy(const KeyFrame* keyframe) const;  // among the observers
   double foundRatio() const { return visible > 0 ? static_cast<double>(found) / visible : 1.0; }
   // Pyramid level at which a point `distance` away is expected to appear.
   int predictLevel(double distance, double log_scale, int num_levels) const;

@@ -32,7 +32,8 @@ class LandmarkCreator : public LandmarkSink {
   // Does to this creator's map what `report` says another creator did to its own copy:
   // counts, line fits, then `keyframe` (that creator's keyframe with its features and pose,
   // without links; its id kept) with its links and new landmarks (ids kept). Links to a
-  // landmark this map no longer has are left out. Returns the keyframe.
+  // landmark this map no longer has are left out. Returns the keyframe. Throws
+  // std::invalid_argument, changing nothing, when the report is of another keyframe.
   std::shared_ptr<KeyFrame> replay(const TrackerReport& report, std::shared_ptr<KeyFrame> keyframe);
 
  private:

@@ -32,6 +32,10 @@ struct KeyFrameInsertionStats {
   int culled_points = 0;  // points retired as unreliable or unconfirmed (not merges)
   // A global bundle adjustment solved meanwhile was written back first: the whole map moved.
   bool global_ba_applied = false;
+  // What local BA moved, as the step left it: the poses of its window's own keyframes and the
+  // positions of the landmarks it adjusted (what culling erased left out), and the lines those
+  // keyframes see (their ends move with the tracker's fits).
+  MapUpdate adjusted;
 };
 
 // The global bundle adjustments after loops (GlobalBundleAdjustment).
@@ -48,7 +52,7 @@ struct GlobalBundleAdjustmentCounts {
 // around it (local bundle adjustment), retires landmarks that proved unreliable and keyframes
 // that became redundant and, with loop.enabled, recognises places and closes loops.
 //
-// Threads: insertKeyFrame, closeLoop, wholeMap and localUpdate are called from one thread (the
+// Threads: insertKeyFrame, closeLoop and wholeMap are called from one thread (the
 // mapping side's, which may be the tracker's) and take map.updateMutex() themselves, step by
 // step; Ceres solves, line description and the loop query with its geometric check run without
 // it. recognise, places,
@@ -92,9 +96,6 @@ class Mapper {
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
   // The whole map as a MapUpdate (whole_map set): after a loop, what copies of the map need.
   MapUpdate wholeMap() const;
-  // What local BA around `keyframe` may have moved: the poses of its window (itself and its
-  // covisible keyframes) and the landmarks they see.
-  MapUpdate localUpdate(const KeyFrame& keyframe) const;
   bool recognisesPlaces() const { return loop_closer_ != nullptr; }
   // What place recognition keeps of each keyframe, for a map file (empty without loop.enabled).
   std::map<long, KeyFramePlace> places() const;
