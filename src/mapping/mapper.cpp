@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/map/by_id.h"
 #include "ply_slam/map/landmark_values.h"
 
 namespace ply_slam {
@@ -53,16 +54,20 @@ class LockPauses : public CorrectionPauses {
 // one frame (the copy took 47 ms in one piece on the 1 500-frame ring).
 constexpr double kGatherHoldMs = 5.0;
 
-// What local BA moved, as it is now (KeyFrameInsertionStats::adjusted). Not the window taken
-// again afterwards: fusion and culling change the new keyframe's best covisible keyframes.
-MapUpdate adjustedBy(const BundleWindow& window, double stamp) {
+// What local BA moved, as it is now (KeyFrameInsertionStats::adjusted): the window's own
+// keyframes (by id: culling may have freed one) and its landmarks. Not the window taken again
+// afterwards: fusion and culling change the new keyframe's best covisible keyframes.
+MapUpdate adjustedBy(const std::vector<long>& keyframe_ids, const BundleWindow& window,
+                     const Map& map, double stamp) {
   MapUpdate update;
   update.stamp = stamp;
+  const auto keyframes = byId(map.keyFrames());
   std::set<long> lines;
-  for (const auto& pose : window.poses) {
-    if (!pose.local || pose.keyframe->bad) continue;
-    update.keyframes.push_back(valuesOf(*pose.keyframe));
-    for (const auto& l : pose.keyframe->map_lines)
+  for (long id : keyframe_ids) {
+    const auto kf = keyframes.find(id);
+    if (kf == keyframes.end() || kf->second->bad) continue;
+    update.keyframes.push_back(valuesOf(*kf->second));
+    for (const auto& l : kf->second->map_lines)
       if (l && !l->bad && lines.insert(l->id).second) update.lines.push_back(valuesOf(*l));
   }
   for (const auto& p : window.landmarks)
@@ -114,6 +119,9 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   bundle_adjuster_.solve(window);
   lock.lock();
   stats.bundle_adjustment = bundle_adjuster_.apply(map_, window);
+  std::vector<long> adjusted_keyframes;
+  for (const auto& pose : window.poses)
+    if (pose.local) adjusted_keyframes.push_back(pose.keyframe->id);
   // Fusion and adjustment changed who sees what: the neighbourhood is taken again.
   stats.culled_points =
       point_culler_.cull(map_, *keyframe, keyframe->bestCovisible(options_.local.window_keyframes));
@@ -121,7 +129,7 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   if (loop_closer_)
     for (long id : stats.culled_keyframes) loop_closer_->removeKeyFrame(id);
   map_.removeBadLandmarks();
-  stats.adjusted = adjustedBy(window, keyframe->stamp);
+  stats.adjusted = adjustedBy(adjusted_keyframes, window, map_, keyframe->stamp);
   return stats;
 }
 
