@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "default_vocabularies.h"
-#include "map_copy.h"
+#include "map_equality.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"

@@ -1,53 +1,14 @@
-// Test helpers: a deep copy of a Map (its own keyframes and landmarks, links re-pointed) and a
-// field-by-field comparison of two maps by id.
+// Test helper: a field-by-field comparison of two maps by id.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <map>
-#include <memory>
 #include <string>
-#include <unordered_map>
 
 #include "ply_slam/map/map.h"
 
 namespace ply_slam::test {
-
-// `map` as a new Map whose keyframes and landmarks are copies (features shared, read-only).
-inline std::unique_ptr<Map> copyMap(const Map& map) {
-  std::unordered_map<const KeyFrame*, std::shared_ptr<KeyFrame>> keyframes;
-  std::unordered_map<const MapPoint*, std::shared_ptr<MapPoint>> points;
-  std::unordered_map<const MapLine*, std::shared_ptr<MapLine>> lines;
-  std::vector<std::shared_ptr<KeyFrame>> kf_list;
-  std::vector<std::shared_ptr<MapPoint>> point_list;
-  std::vector<std::shared_ptr<MapLine>> line_list;
-  for (const auto& kf : map.keyFrames())
-    kf_list.push_back(keyframes[kf.get()] = std::make_shared<KeyFrame>(*kf));
-  for (const auto& p : map.mapPoints())
-    point_list.push_back(points[p.get()] = std::make_shared<MapPoint>(*p));
-  for (const auto& l : map.mapLines())
-    line_list.push_back(lines[l.get()] = std::make_shared<MapLine>(*l));
-  // Links may only lead to what the map holds.
-  auto kf_of = [&](const KeyFrame* kf) { return kf ? keyframes.at(kf).get() : nullptr; };
-  for (auto& kf : kf_list) {
-    for (auto& p : kf->map_points)
-      if (p) p = points.at(p.get());
-    for (auto& l : kf->map_lines)
-      if (l) l = lines.at(l.get());
-    std::map<KeyFrame*, int> covisibility;
-    for (const auto& [other, weight] : kf->covisibility) covisibility[kf_of(other)] = weight;
-    kf->covisibility = std::move(covisibility);
-    kf->parent = kf_of(kf->parent);
-  }
-  for (auto& p : point_list) {
-    for (auto& o : p->observers) o.keyframe = kf_of(o.keyframe);
-    if (p->replaced_by && points.count(p->replaced_by.get()))
-      p->replaced_by = points.at(p->replaced_by.get());
-  }
-  auto copy = std::make_unique<Map>();
-  copy->adopt(std::move(kf_list), std::move(point_list), std::move(line_list));
-  return copy;
-}
 
 inline bool sameBytes(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() &&
