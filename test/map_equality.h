@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/map/map.h"
 
 namespace ply_slam::test {
@@ -13,6 +14,15 @@ namespace ply_slam::test {
 inline bool sameBytes(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() &&
          (a.empty() || cv::countNonZero(a.reshape(1) != b.reshape(1)) == 0);
+}
+
+// Same stamps, same poses to the last bit.
+inline void expectSameTrajectory(const Trajectory& a, const Trajectory& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].stamp, b[i].stamp);
+    ASSERT_TRUE(a[i].T_wc.matrix() == b[i].T_wc.matrix()) << "pose " << i << " at " << a[i].stamp;
+  }
 }
 
 // Every field of every keyframe, point and line, exactly (poses within `pose_tolerance`); links

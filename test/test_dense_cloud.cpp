@@ -265,8 +265,8 @@ TEST(DenseMap, PlacesKeyFramesAndRePlacesThoseWhosePoseChanged) {
   MapUpdate update;
   Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
   moved.translation() = Eigen::Vector3d(-3, 0, 0);
-  update.keyframes.push_back({1, moved});
-  update.keyframes.push_back({2, b.T_wc});                          // unchanged
+  update.keyframes.push_back({1, moved.inverse()});
+  update.keyframes.push_back({2, b.T_wc.inverse()});                // unchanged
   update.keyframes.push_back({99, Eigen::Isometry3d::Identity()});  // unknown: ignored
   EXPECT_EQ(map.applyUpdate(update), std::vector<long>{1});
   global = map.globalCloud();

@@ -267,7 +267,7 @@ TEST(DenseMappingWorker, PoseUpdateRebuildsTheOctreeAtTheNewPose) {
   MapUpdate update;
   Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
   moved.translation() = Eigen::Vector3d(0, 0, 1.0);  // the keyframe was 1 m further forward
-  update.keyframes.push_back({1, moved});
+  update.keyframes.push_back({1, moved.inverse()});
   worker.push(update);
   worker.finish();
   worker.withMaps([](DenseMap&, const SemanticOctree& octree) {

@@ -22,6 +22,7 @@
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
+#include "ply_slam/system/system.h"
 #include "ply_slam/tracking/tracker.h"
 #include "pose_test_helpers.h"
 #include "shared_data.h"
@@ -29,16 +30,6 @@
 
 namespace ply_slam {
 namespace {
-
-// A keyframe as another copy of the map first gets it: features and pose, no links.
-std::shared_ptr<KeyFrame> unlinked(const KeyFrame& keyframe) {
-  auto copy = std::make_shared<KeyFrame>(keyframe);
-  copy->map_points.assign(copy->map_points.size(), nullptr);
-  copy->map_lines.assign(copy->map_lines.size(), nullptr);
-  copy->covisibility.clear();
-  copy->parent = nullptr;
-  return copy;
-}
 
 // A small map: two keyframes sharing one point, each with one keypoint.
 struct TwoKeyFrames {
@@ -139,7 +130,7 @@ class ReplicaRun {
     line_fits += static_cast<int>(report_.line_fits.size());
     for (const auto& link : report_.point_links) fused_depths += link.weight > 0.0;
     LandmarkCreator(config_.camera, config_.tracking.max_point_depth, config_.lines, follower_)
-        .replay(report_, unlinked(keyframe));
+        .replay(report_, keyframe.unlinkedCopy());
     report_ = TrackerReport{};
   }
 
@@ -196,6 +187,29 @@ TEST(MapReplicas, FollowTheTrackerByItsReportAndTheMapperByItsUpdate) {
   EXPECT_GE(run.keyframes, 8);
   EXPECT_GT(run.line_fits, 100);
   EXPECT_GT(run.fused_depths, 500);
+}
+
+// The system with the tracker in a copy of the map of its own (MappingMode::kSplit: the copies
+// follow each other by reports and updates) tracks and maps as it does in one map, bit for bit.
+TEST(MapReplicas, ASystemTrackingInACopyRepeatsTheRunInOneMap) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
+  SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+  config.lines.enabled = true;
+  config.loop.enabled = false;
+  const TumSequence sequence(folder);
+  System one_map(config, MappingMode::kInline), split(config, MappingMode::kSplit);
+  long keyframes = 0;
+  for (size_t i = 0; i < sequence.size() && i < 120; ++i) {
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    const FrameResult a = one_map.process(images), b = split.process(images);
+    ASSERT_EQ(a.tracking.state, b.tracking.state) << "frame " << i;
+    ASSERT_EQ(a.mapped.size(), b.mapped.size()) << "frame " << i;
+    keyframes += static_cast<long>(b.mapped.size());
+  }
+  EXPECT_GE(keyframes, 8);
+  test::expectSameTrajectory(split.cameraTrajectory(), one_map.cameraTrajectory());
+  test::expectSameTrajectory(split.keyFrameTrajectory(), one_map.keyFrameTrajectory());
+  test::expectSameMap(split.map(), one_map.map(), "after 120 frames");
 }
 
 // Loop corrections (rigid moves, fusion across the loop, the pose graph, the global BA written

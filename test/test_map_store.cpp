@@ -60,7 +60,7 @@ TEST(MapStore, AppliesUpdates) {
   MapUpdate update;
   Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
   moved.translation() = Eigen::Vector3d(0, 5, 0);
-  update.keyframes = {{1, moved}, {99, moved}};  // 99 is unknown: ignored
+  update.keyframes = {{1, moved.inverse()}, {99, moved.inverse()}};  // 99 is unknown: ignored
   update.points = {{11, {3, 3, 3}}};
   update.erased_points = {10};  // merged into 11
   store.insert(packet(2, 3.0, 2.0));

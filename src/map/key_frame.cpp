@@ -4,6 +4,15 @@
 
 namespace ply_slam {
 
+std::shared_ptr<KeyFrame> KeyFrame::unlinkedCopy() const {
+  auto copy = std::make_shared<KeyFrame>(*this);
+  copy->map_points.assign(map_points.size(), nullptr);
+  copy->map_lines.assign(map_lines.size(), nullptr);
+  copy->covisibility.clear();
+  copy->parent = nullptr;
+  return copy;
+}
+
 int KeyFrame::trackedPoints(int min_observations) const {
   int n = 0;
   for (const auto& p : map_points)

@@ -3,7 +3,7 @@
 namespace ply_slam {
 
 MapUpdate::KeyFramePose valuesOf(const KeyFrame& keyframe) {
-  return {keyframe.id, keyframe.T_wc(), keyframe.parent ? keyframe.parent->id : -1};
+  return {keyframe.id, keyframe.T_cw, keyframe.parent ? keyframe.parent->id : -1};
 }
 
 LandmarkPoint valuesOf(const MapPoint& point) {

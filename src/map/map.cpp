@@ -227,7 +227,7 @@ void Map::apply(const MapUpdate& update) {
   const auto keyframes = byId(keyframes_);
   for (const auto& pose : update.keyframes)
     if (const auto kf = keyframes.find(pose.id); kf != keyframes.end()) {
-      kf->second->T_cw = pose.T_wc.inverse();
+      kf->second->T_cw = pose.T_cw;
       const auto parent = keyframes.find(pose.parent);
       kf->second->parent = parent != keyframes.end() ? parent->second.get() : nullptr;
     }

@@ -36,7 +36,7 @@ bool MapStore::insert(const KeyFramePacket& packet) {
 void MapStore::apply(const MapUpdate& update) {
   for (const auto& k : update.keyframes) {
     const auto it = keyframes_.find(k.id);
-    if (it != keyframes_.end()) it->second.T_wc = k.T_wc;
+    if (it != keyframes_.end()) it->second.T_wc = k.T_wc();
   }
   for (const auto& p : update.points) points_[p.id] = p;
   for (const auto& l : update.lines) lines_[l.id] = l;

@@ -204,11 +204,13 @@ namespace {
 KeyFramePoseMsg toMsg(const MapUpdate::KeyFramePose& k) {
   KeyFramePoseMsg m;
   m.id = k.id;
-  m.T_wc = toPoseMsg(k.T_wc);
+  m.T_wc = toPoseMsg(k.T_wc());
   return m;
 }
 
-MapUpdate::KeyFramePose fromMsg(const KeyFramePoseMsg& m) { return {m.id, fromPoseMsg(m.T_wc)}; }
+MapUpdate::KeyFramePose fromMsg(const KeyFramePoseMsg& m) {
+  return {m.id, fromPoseMsg(m.T_wc).inverse()};
+}
 
 // Element-wise conversions of lists.
 template <typename Msg, typename From>

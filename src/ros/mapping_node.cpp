@@ -195,7 +195,7 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
     resend_requested_ = false;
     dense_missing_ = 0;
     for (const auto& k : keyframes) {
-      placed.keyframes.push_back({k.id, k.T_wc});
+      placed.keyframes.push_back({k.id, k.T_wc.inverse()});
       dense_missing_ += dense_ && !dense_keyframes_.count(k.id);
     }
     for (long id : placed.erased_keyframes) dense_keyframes_.erase(id);

@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <future>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <set>
+#include <utility>
 
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/map/map_file_reader.h"
@@ -25,9 +27,15 @@ System::System(const SystemConfig& config, MappingMode mode)
       extractor_(config.orb),
       rejector_(config.dynamic, config.camera),
       memory_(config.dynamic.carry_frames),
-      mapper_(config.camera, mapperOptions(config), map_, mode == MappingMode::kInline),
-      tracker_(config.camera, config.tracking, config.orb, config.lines, map_,
-               mapper_.landmarkSink()) {
+      tracking_map_(mode == MappingMode::kSplit ? std::make_unique<Map>() : nullptr),
+      tracking_creator_(tracking_map_ ? std::make_unique<LandmarkCreator>(
+                                            config.camera, config.tracking.max_point_depth,
+                                            config.lines, *tracking_map_)
+                                      : nullptr),
+      mapper_(config.camera, mapperOptions(config), map_, mode != MappingMode::kOwnThread),
+      tracker_(config.camera, config.tracking, config.orb, config.lines, trackingMap(),
+               tracking_creator_ ? *tracking_creator_ : mapper_.landmarkSink()) {
+  if (tracking_creator_) tracking_creator_->reportTo(&report_);
   if (config_.lines.enabled) {
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
@@ -87,7 +95,7 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
 
   // Tracking reads and extends the map: under its lock, taken after the frame's features.
   Stopwatch tracking;
-  std::unique_lock<std::mutex> lock(map_.updateMutex());
+  std::unique_lock<std::mutex> lock(trackingMap().updateMutex());
   result.timing.map_wait_ms = tracking.elapsedMs();
   if (mapping_thread_) result.mapped = mapping_thread_->takeFinished();
   result.tracking = tracker_.track(frame);
@@ -151,19 +159,44 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
     mapping_thread_->push(std::move(job));
     return;
   }
+  if (tracking_map_) job.keyframe = reportToMapper(*job.keyframe);
   lock.unlock();
   result.mapped.push_back(mapKeyFrame(job));
   lock.lock();
+  if (tracking_map_) followMapper(*result.mapped.back().map_update);
   // The frame was tracked before its keyframe closed the loop: it moves with the map.
   if (const auto& loop = result.mapped.back().loop_correction)
     result.tracking.T_cw = result.tracking.T_cw * loop->world_correction.inverse();
 }
 
+std::shared_ptr<KeyFrame> System::reportToMapper(const KeyFrame& keyframe) {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  return mapper_.replay(std::exchange(report_, TrackerReport{}), keyframe.unlinkedCopy());
+}
+
+void System::followMapper(const MapUpdate& update) {
+  tracking_map_->apply(update);
+  // What left the tracker's copy is the mapping side's to tell (the update says it).
+  tracking_map_->takeRemovedPoints();
+  tracking_map_->takeRemovedLines();
+}
+
+std::shared_ptr<const KeyFrame> System::mapperKeyFrame(const std::shared_ptr<KeyFrame>& reference) {
+  if (!tracking_map_) return reference;
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  for (const auto& kf : map_.keyFrames())
+    if (kf->id == reference->id) return kf;
+  throw std::logic_error("System: the tracker's reference keyframe " +
+                         std::to_string(reference->id) + " is not in the mapping side's map");
+}
+
 void System::rememberTracked(const FrameResult& result) {
   if (result.tracking.state != TrackingState::kOk) return;
   const auto reference = tracker_.referenceKeyFrame();
-  anchors_.emplace(reference->id, reference);
-  tracked_.add(result.stamp, reference->id, reference->T_cw, result.tracking.T_cw);
+  auto anchor = anchors_.find(reference->id);
+  if (anchor == anchors_.end())
+    anchor = anchors_.emplace(reference->id, mapperKeyFrame(reference)).first;
+  tracked_.add(result.stamp, reference->id, anchor->second->T_cw, result.tracking.T_cw);
 }
 
 MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
@@ -176,6 +209,9 @@ MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
     return out;
   }
   KeyFrame& keyframe = *job.keyframe;
+  // With kSplit the tracker's copy follows by what this does to the map (MapUpdate::journal).
+  MapJournal journal;
+  if (tracking_map_) map_.journalTo(&journal);
   const KeyFrameInsertionStats mapped = mapper_.insertKeyFrame(
       job.keyframe, [this] { return std::set<long>{tracker_.referenceKeyFrame()->id}; });
   out.culled_points = mapped.culled_points;
@@ -187,11 +223,13 @@ MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
   }
   if (auto correction = mapper_.closeLoop(keyframe, *out.packet))
     out.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
+  if (tracking_map_) map_.journalTo(nullptr);
   MapUpdate update =
       out.loop_correction || mapped.global_ba_applied ? mapper_.wholeMap() : mapped.adjusted;
   update.erased_keyframes = mapped.culled_keyframes;
   update.erased_points = map_.takeRemovedPoints();
   update.erased_lines = map_.takeRemovedLines();
+  update.journal = std::move(journal);
   out.map_update = std::make_shared<const MapUpdate>(std::move(update));
   out.ms = mapping.elapsedMs();
   return out;
@@ -313,12 +351,17 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
   if (next_frame_id_ != 0 || map_.numKeyFrames() != 0)
     throw std::logic_error("System::loadMap: a map is loaded before the first frame");
   // Read and checked whole before anything changes: a bad file leaves the system as it was.
-  MapFileContents loaded =
-      MapFileReader::read((std::filesystem::path(folder) / kMapFileName).string(), mapFileSetup(),
-                          &extractor_.scales());
+  const std::string file = (std::filesystem::path(folder) / kMapFileName).string();
+  MapFileContents loaded = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
+  // kSplit: the tracker's copy is a map of its own, from the same file.
+  std::optional<MapFileContents> tracker_copy;
+  if (tracking_map_) tracker_copy = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
   long last_frame = -1;
   for (const auto& kf : loaded.keyframes) last_frame = std::max(last_frame, kf->frame_id);
   map_.adopt(std::move(loaded.keyframes), std::move(loaded.points), std::move(loaded.lines));
+  if (tracker_copy)
+    tracking_map_->adopt(std::move(tracker_copy->keyframes), std::move(tracker_copy->points),
+                         std::move(tracker_copy->lines));
   mapper_.addLoadedKeyFrames(loaded.places);
   tracker_.startLost();
   tracker_.setLocalisationOnly(localisation_only);

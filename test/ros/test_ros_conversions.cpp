@@ -209,7 +209,7 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   EXPECT_EQ(v.stamp, u.stamp);
   ASSERT_EQ(v.keyframes.size(), 2u);
   EXPECT_EQ(v.keyframes[1].id, 4);
-  expectSamePose(v.keyframes[1].T_wc, u.keyframes[1].T_wc);
+  expectSamePose(v.keyframes[1].T_wc(), u.keyframes[1].T_wc());
   ASSERT_EQ(v.points.size(), 1u);
   EXPECT_EQ(v.points[0].position, u.points[0].position);
   ASSERT_EQ(v.lines.size(), 1u);

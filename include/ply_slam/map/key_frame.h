@@ -27,6 +27,9 @@ struct KeyFrame {
   bool bad = false;  // erased from the map (culled); holds no links to other keyframes
 
   Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }
+  // The keyframe as another copy of the map first gets it: id, features and pose, no links
+  // (that copy links it as a TrackerReport says).
+  std::shared_ptr<KeyFrame> unlinkedCopy() const;
   int trackedPoints(int min_observations = 1) const;
   // Up to n keyframes sharing the most landmarks with this one, most first.
   std::vector<KeyFrame*> bestCovisible(size_t n) const;

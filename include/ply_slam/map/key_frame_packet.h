@@ -68,8 +68,11 @@ struct KeyFramePacket {
 struct MapUpdate {
   struct KeyFramePose {
     long id = 0;
-    Eigen::Isometry3d T_wc = Eigen::Isometry3d::Identity();
+    // World -> camera, as the map keeps it: a copy of the map gets the mapping side's pose
+    // bit for bit (an inverse taken twice would not give it back).
+    Eigen::Isometry3d T_cw = Eigen::Isometry3d::Identity();
     long parent = -1;  // in the spanning tree; -1: none (the first keyframe)
+    Eigen::Isometry3d T_wc() const { return T_cw.inverse(); }
   };
   double stamp = 0.0;  // of the newest keyframe it accounts for
   std::vector<KeyFramePose> keyframes;

@@ -76,6 +76,12 @@ class Mapper {
   void setCorrectionListener(CorrectionListener listener) { listener_ = std::move(listener); }
   // Where the tracker sends what it measured: new keyframes, found landmarks, line fits.
   LandmarkSink& landmarkSink() { return creator_; }
+  // What a tracker working on a copy of the map reported, done to this map, with that
+  // tracker's new keyframe (its unlinked copy, KeyFrame::unlinkedCopy): LandmarkCreator::replay.
+  std::shared_ptr<KeyFrame> replay(const TrackerReport& report,
+                                   std::shared_ptr<KeyFrame> keyframe) {
+    return creator_.replay(report, std::move(keyframe));
+  }
   // The new keyframe and the first one are always kept, and those made after the new one.
   // Culled keyframes leave the place database too.
   KeyFrameInsertionStats insertKeyFrame(const std::shared_ptr<KeyFrame>& keyframe,

@@ -73,8 +73,12 @@ class InvalidFrame : public std::invalid_argument {
 
 // Where the mapping side runs. kInline: after each keyframe, before process() returns, so that
 // runs repeat bit for bit. kOwnThread: on a thread of its own, while tracking goes on (the two
-// share the map under Map::updateMutex()); results come with later frames.
-enum class MappingMode { kInline, kOwnThread };
+// share the map under Map::updateMutex()); results come with later frames. kSplit: in line as
+// kInline, but the tracker tracks in a copy of the map of its own, as the tracking process of
+// a two-process split would: the mapping side's map follows the tracker's reports
+// (TrackerReport), the tracker's copy follows the mapping side's updates (MapUpdate with its
+// journal); runs repeat kInline's bit for bit.
+enum class MappingMode { kInline, kOwnThread, kSplit };
 
 // The whole pipeline in one process, frame by frame: the tracking side in process(), the
 // mapping side as MappingMode says.
@@ -160,6 +164,15 @@ class System {
   MappedKeyFrame mapKeyFrame(const MappingJob& job);
   // The frame's pose, hung from the tracker's reference keyframe (with the map's lock held).
   void rememberTracked(const FrameResult& result);
+  // kSplit: the tracker's report since the last keyframe, done to the mapping side's map with
+  // (a copy of) the tracker's new keyframe; returns that copy. With the tracker's map locked.
+  std::shared_ptr<KeyFrame> reportToMapper(const KeyFrame& keyframe);
+  // kSplit: what the mapping side changed, done to the tracker's map (locked by the caller).
+  void followMapper(const MapUpdate& update);
+  // The map the tracker tracks in: its own copy with kSplit, else the one map.
+  Map& trackingMap() { return tracking_map_ ? *tracking_map_ : map_; }
+  // The mapping side's keyframe of that id (the reference keyframe itself but with kSplit).
+  std::shared_ptr<const KeyFrame> mapperKeyFrame(const std::shared_ptr<KeyFrame>& reference);
   // Frames anchored on keyframes the mapping side erased move to live ones, where they are.
   void reanchorTrackedFrames(const std::vector<long>& erased);
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
@@ -170,14 +183,19 @@ class System {
   std::unique_ptr<LineFitter> line_fitter_;
   DynamicRejector rejector_;
   InstanceMemory memory_;
-  Map map_;
+  Map map_;  // the mapping side's
+  // kSplit (null otherwise): the tracker's copy of the map, the creator writing into it what
+  // the tracker measured, and its report of that since the last keyframe (under the copy's lock).
+  std::unique_ptr<Map> tracking_map_;
+  std::unique_ptr<LandmarkCreator> tracking_creator_;
+  TrackerReport report_;
   Mapper mapper_;  // before the tracker: it receives what the tracker measured
   Tracker tracker_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   // Tracked frames, each relative to the tracker's reference keyframe of its time; the
-  // keyframes they hang from (culled ones are replaced at once, see reanchorTrackedFrames).
-  // Guarded by the map's lock: the mapping side re-anchors.
+  // mapping side's keyframes they hang from (culled ones are replaced at once, see
+  // reanchorTrackedFrames). Guarded by the mapping side's map's lock: it re-anchors.
   AnchoredTrajectory tracked_;
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
   // Last: joined before anything it uses goes. Null with kInline.
