@@ -1,6 +1,7 @@
 #include "ply_slam/map/map.h"
 
 #include <algorithm>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -208,7 +209,7 @@ void Map::replay(const MapJournal& journal) {
     const bool has_kf = kf != keyframes.end(), has_point = point != points.end();
     using Change = MapJournal::Change;
     if (e.change == Change::kAddObservation && has_kf && has_point) {
-      addObservationLocked(*kf->second, e.index, point->second);
+      addObservationFollowed(*kf->second, e.index, point->second);
     } else if (e.change == Change::kRemoveObservation && has_kf) {
       removeObservationLocked(*kf->second, e.index);
     } else if (e.change == Change::kReplace && has_point && points.count(e.winner)) {
@@ -219,6 +220,16 @@ void Map::replay(const MapJournal& journal) {
       eraseKeyFrameLocked(*kf->second, e.min_point_observers);
     }
   }
+}
+
+void Map::addObservationFollowed(KeyFrame& keyframe, size_t index,
+                                 const std::shared_ptr<MapPoint>& point) {
+  const auto& held = keyframe.map_points[index];
+  if (held == point) return;
+  // A copy ahead of the mapping side (its keyframe made before a merge it followed) may hold
+  // a link there the mapping side has not got: the mapping side's wins. Never so in line.
+  if (held) removeObservationLocked(keyframe, index);
+  addObservationLocked(keyframe, index, point);
 }
 
 void Map::apply(const MapUpdate& update) {
@@ -237,8 +248,28 @@ void Map::apply(const MapUpdate& update) {
   const auto lines = byId(lines_);
   for (const auto& values : update.lines)
     if (const auto l = lines.find(values.id); l != lines.end()) setValues(*l->second, values);
+  eraseGone(update, points, lines);
   removeBad(points_, removed_points_);
   removeBad(lines_, removed_lines_);
+}
+
+void Map::eraseGone(const MapUpdate& update, const PointsById& points, const LinesById& lines) {
+  // A copy ahead of the mapping side links landmarks of its own to what the mapping side
+  // erased with a keyframe (it saw them from more keyframes): gone all the same. In line the
+  // journal erased them already.
+  for (long id : update.erased_points)
+    if (const auto p = points.find(id); p != points.end() && !p->second->bad)
+      erasePointLocked(*p->second);
+  std::set<const MapLine*> gone;
+  for (long id : update.erased_lines)
+    if (const auto l = lines.find(id); l != lines.end() && !l->second->bad) {
+      l->second->bad = true;
+      gone.insert(l->second.get());
+    }
+  if (gone.empty()) return;
+  for (const auto& kf : keyframes_)
+    for (auto& line : kf->map_lines)
+      if (line && gone.count(line.get())) line = nullptr;
 }
 
 void Map::unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers) {

@@ -161,8 +161,26 @@ TrackerReport::LineFit LandmarkCreator::worldFit(const MapLine& line, const Line
           1.0 / noise.variance(fit.end.z())};
 }
 
+namespace {
+
+// The point of that id in this map, or the one it was merged into; null when gone.
+std::shared_ptr<MapPoint> survivorOf(
+    long id, const std::unordered_map<long, std::shared_ptr<MapPoint>>& points,
+    const LandmarkCreator::MergedPoints& merged) {
+  for (size_t hops = 0; hops <= merged.size(); ++hops) {  // a chain, never longer than the map
+    if (const auto p = points.find(id); p != points.end()) return p->second;
+    const auto m = merged.find(id);
+    if (m == merged.end()) return nullptr;
+    id = m->second;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 std::shared_ptr<KeyFrame> LandmarkCreator::replay(const TrackerReport& report,
-                                                  std::shared_ptr<KeyFrame> keyframe) {
+                                                  std::shared_ptr<KeyFrame> keyframe,
+                                                  const MergedPoints& merged) {
   if (report.keyframe != keyframe->id)
     throw std::invalid_argument("LandmarkCreator::replay: the report is of keyframe " +
                                 std::to_string(report.keyframe) + ", not " +
@@ -170,22 +188,24 @@ std::shared_ptr<KeyFrame> LandmarkCreator::replay(const TrackerReport& report,
   const auto points = byId(map_.mapPoints());
   const auto lines = byId(map_.mapLines());
   for (const auto& [id, counts] : report.points)
-    if (const auto p = points.find(id); p != points.end()) {
-      p->second->visible += counts.visible;
-      p->second->found += counts.found;
+    if (const auto p = survivorOf(id, points, merged)) {
+      p->visible += counts.visible;
+      p->found += counts.found;
     }
   for (const auto& [id, found] : report.lines)
     if (const auto l = lines.find(id); l != lines.end()) l->second->found += found;
   for (const auto& fit : report.line_fits)
     if (const auto l = lines.find(fit.id); l != lines.end()) fuse(*l->second, fit);
   map_.adoptKeyFrame(keyframe);
-  replayPoints(report.point_links, points, *keyframe);
+  replayPoints(report.point_links, points, merged, *keyframe);
   replayLines(report.line_links, lines, *keyframe);
   return keyframe;
 }
 
 void LandmarkCreator::replayPoints(const std::vector<TrackerReport::PointLink>& links,
-                                   const PointsById& points, KeyFrame& keyframe) {
+                                   const PointsById& points, const MergedPoints& merged,
+                                   KeyFrame& keyframe) {
+  std::vector<std::pair<const TrackerReport::PointLink*, std::shared_ptr<MapPoint>>> moved;
   for (const auto& link : links) {
     std::shared_ptr<MapPoint> point;
     if (link.created) {
@@ -194,10 +214,19 @@ void LandmarkCreator::replayPoints(const std::vector<TrackerReport::PointLink>& 
     } else if (const auto p = points.find(link.id); p != points.end()) {
       point = p->second;
     } else {
-      continue;  // gone from this map meanwhile
+      // Merged away meanwhile: the other copy moves this link to the survivor when it follows
+      // the merge, after its own links, and only where the keyframe does not see it yet.
+      if (auto survivor = survivorOf(link.id, points, merged))
+        moved.emplace_back(&link, std::move(survivor));
+      continue;  // else gone from this map meanwhile
     }
     map_.addObservation(keyframe, link.keypoint, point);
     if (link.weight > 0.0) point->fuse(link.measured, link.weight);
+  }
+  for (const auto& [link, point] : moved) {
+    if (point->seenBy(&keyframe)) continue;
+    map_.addObservation(keyframe, link->keypoint, point);
+    if (link->weight > 0.0) point->fuse(link->measured, link->weight);
   }
 }
 

@@ -12,6 +12,7 @@
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/map/map_file_reader.h"
 #include "ply_slam/map/map_file_writer.h"
+#include "ply_slam/mapping/carry_along.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
@@ -27,12 +28,15 @@ System::System(const SystemConfig& config, MappingMode mode)
       extractor_(config.orb),
       rejector_(config.dynamic, config.camera),
       memory_(config.dynamic.carry_frames),
-      tracking_map_(mode == MappingMode::kSplit ? std::make_unique<Map>() : nullptr),
+      tracking_map_(mode == MappingMode::kSplit || mode == MappingMode::kSplitOwnThread
+                        ? std::make_unique<Map>()
+                        : nullptr),
       tracking_creator_(tracking_map_ ? std::make_unique<LandmarkCreator>(
                                             config.camera, config.tracking.max_point_depth,
                                             config.lines, *tracking_map_)
                                       : nullptr),
-      mapper_(config.camera, mapperOptions(config), map_, mode != MappingMode::kOwnThread),
+      mapper_(config.camera, mapperOptions(config), map_,
+              mode == MappingMode::kInline || mode == MappingMode::kSplit),
       tracker_(config.camera, config.tracking, config.orb, config.lines, trackingMap(),
                tracking_creator_ ? *tracking_creator_ : mapper_.landmarkSink()) {
   if (tracking_creator_) tracking_creator_->reportTo(&report_);
@@ -44,10 +48,13 @@ System::System(const SystemConfig& config, MappingMode mode)
     tracker_.setPlaceCandidates([this](const Frame& frame) {
       return mapper_.recognise(frame.features.descriptors, kRelocalisationCandidates);
     });
-  // The mapper holds the map's lock when it tells: the tracker is between two frames.
-  mapper_.setCorrectionListener(
-      [this](const Eigen::Isometry3d& correction) { tracker_.applyCorrection(correction); });
-  if (mode == MappingMode::kOwnThread)
+  if (tracking_map_)  // the tracker moves when its copy follows the update that says so
+    mapper_.setCorrectionListener(
+        [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
+  else  // the mapper holds the map's lock when it tells: the tracker is between two frames
+    mapper_.setCorrectionListener(
+        [this](const Eigen::Isometry3d& correction) { tracker_.applyCorrection(correction); });
+  if (mode == MappingMode::kOwnThread || mode == MappingMode::kSplitOwnThread)
     mapping_thread_ =
         std::make_unique<MappingThread>([this](const MappingJob& job) { return mapKeyFrame(job); });
 }
@@ -98,7 +105,10 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   std::unique_lock<std::mutex> lock(trackingMap().updateMutex());
   result.timing.map_wait_ms = tracking.elapsedMs();
   if (mapping_thread_) result.mapped = mapping_thread_->takeFinished();
+  if (tracking_map_)
+    for (const auto& mapped : result.mapped) followMapper(*mapped.map_update);
   result.tracking = tracker_.track(frame);
+  if (const auto& reference = tracker_.referenceKeyFrame()) reference_id_ = reference->id;
   result.timing.tracking_ms = tracking.elapsedMs();
   result.timing.total_ms = total.elapsedMs();
   markInliers(frame, result.features);
@@ -155,11 +165,15 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
   MappingJob job = MappingJob{result.tracking.new_keyframe, images, result.instances,
                               result.dynamic_instances, result.dynamic_mask}
                        .detached();
+  if (tracking_map_) {  // the mapping side gets a keyframe of its own and the report
+    job.keyframe = job.keyframe->unlinkedCopy();
+    job.report = std::exchange(report_, TrackerReport{});
+    job.followed_updates = std::exchange(followed_at_last_keyframe_, updates_followed_);
+  }
   if (mapping_thread_) {
     mapping_thread_->push(std::move(job));
     return;
   }
-  if (tracking_map_) job.keyframe = reportToMapper(*job.keyframe);
   lock.unlock();
   result.mapped.push_back(mapKeyFrame(job));
   lock.lock();
@@ -169,51 +183,81 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
     result.tracking.T_cw = result.tracking.T_cw * loop->world_correction.inverse();
 }
 
-std::shared_ptr<KeyFrame> System::reportToMapper(const KeyFrame& keyframe) {
+void System::followTracker(const MappingJob& job) {
+  // Merges the tracker's copy had followed before the report began are no longer named in it.
+  while (!merge_log_.empty() && merge_log_.front().first <= job.followed_updates) {
+    merged_.erase(merge_log_.front().second);
+    merge_log_.pop_front();
+  }
   std::lock_guard<std::mutex> lock(map_.updateMutex());
-  return mapper_.replay(std::exchange(report_, TrackerReport{}), keyframe.unlinkedCopy());
+  mapper_.replay(job.report, job.keyframe, merged_);
+  std::lock_guard<std::mutex> anchors_lock(anchors_mutex_);
+  if (unmapped_anchors_.empty()) return;
+  for (const auto& kf : map_.keyFrames())
+    if (unmapped_anchors_.erase(kf->id)) anchors_[kf->id] = kf;
 }
 
 void System::followMapper(const MapUpdate& update) {
-  tracking_map_->apply(update);
+  Map& copy = *tracking_map_;
+  // Alive through the update, which may erase some (their poses are read after).
+  const std::vector<std::shared_ptr<KeyFrame>> keyframes = copy.keyFrames();
+  std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> before;
+  for (const auto& kf : keyframes) before.emplace_back(kf.get(), kf->T_wc());
+  copy.apply(update);
+  if (update.whole_map) {
+    std::set<long> solved_ids;
+    for (const auto& pose : update.keyframes) solved_ids.insert(pose.id);
+    std::set<const KeyFrame*> solved;
+    std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> kept;
+    for (const auto& [kf, T_wc] : before) {
+      if (kf->bad) continue;
+      if (solved_ids.count(kf->id)) solved.insert(kf);
+      kept.emplace_back(kf, T_wc);
+    }
+    carryAlong(copy, solved, kept);
+  }
+  for (const auto& correction : update.world_corrections) tracker_.applyCorrection(correction);
+  ++updates_followed_;
   // What left the tracker's copy is the mapping side's to tell (the update says it).
-  tracking_map_->takeRemovedPoints();
-  tracking_map_->takeRemovedLines();
-}
-
-std::shared_ptr<const KeyFrame> System::mapperKeyFrame(const std::shared_ptr<KeyFrame>& reference) {
-  if (!tracking_map_) return reference;
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
-  for (const auto& kf : map_.keyFrames())
-    if (kf->id == reference->id) return kf;
-  throw std::logic_error("System: the tracker's reference keyframe " +
-                         std::to_string(reference->id) + " is not in the mapping side's map");
+  copy.takeRemovedPoints();
+  copy.takeRemovedLines();
 }
 
 void System::rememberTracked(const FrameResult& result) {
   if (result.tracking.state != TrackingState::kOk) return;
   const auto reference = tracker_.referenceKeyFrame();
-  auto anchor = anchors_.find(reference->id);
-  if (anchor == anchors_.end())
-    anchor = anchors_.emplace(reference->id, mapperKeyFrame(reference)).first;
-  tracked_.add(result.stamp, reference->id, anchor->second->T_cw, result.tracking.T_cw);
+  std::lock_guard<std::mutex> lock(anchors_mutex_);
+  // In the split modes the tracker's keyframe, until the mapping side has its own (same pose).
+  if (anchors_.emplace(reference->id, reference).second && tracking_map_)
+    unmapped_anchors_.insert(reference->id);
+  tracked_.add(result.stamp, reference->id, reference->T_cw, result.tracking.T_cw);
 }
 
 MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
   Stopwatch mapping;
   MappedKeyFrame out;
-  if (!job.keyframe) {  // no keyframe: a global bundle adjustment that ended to write back
-    mapper_.applySolvedGlobalBundleAdjustment();
-    out.map_update = std::make_shared<const MapUpdate>(mapper_.wholeMap());
-    out.ms = mapping.elapsedMs();
-    return out;
-  }
-  KeyFrame& keyframe = *job.keyframe;
-  // With kSplit the tracker's copy follows by what this does to the map (MapUpdate::journal).
+  if (tracking_map_ && job.keyframe) followTracker(job);
+  // In the split modes the tracker's copy follows by what this does to the map.
   MapJournal journal;
   if (tracking_map_) map_.journalTo(&journal);
-  const KeyFrameInsertionStats mapped = mapper_.insertKeyFrame(
-      job.keyframe, [this] { return std::set<long>{tracker_.referenceKeyFrame()->id}; });
+  std::optional<KeyFrameInsertionStats> mapped;
+  if (job.keyframe) {
+    mapped = insertKeyFrame(job, out);
+  } else {  // no keyframe: a global bundle adjustment that ended to write back
+    mapper_.applySolvedGlobalBundleAdjustment();
+  }
+  if (tracking_map_) map_.journalTo(nullptr);
+  const bool whole_map = !mapped || out.loop_correction || mapped->global_ba_applied;
+  out.map_update =
+      std::make_shared<const MapUpdate>(updateOf(mapped, whole_map, std::move(journal)));
+  out.ms = mapping.elapsedMs();
+  return out;
+}
+
+KeyFrameInsertionStats System::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {
+  KeyFrame& keyframe = *job.keyframe;
+  KeyFrameInsertionStats mapped =
+      mapper_.insertKeyFrame(job.keyframe, [this] { return std::set<long>{reference_id_.load()}; });
   out.culled_points = mapped.culled_points;
   {
     std::lock_guard<std::mutex> lock(map_.updateMutex());
@@ -223,16 +267,24 @@ MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
   }
   if (auto correction = mapper_.closeLoop(keyframe, *out.packet))
     out.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
-  if (tracking_map_) map_.journalTo(nullptr);
-  MapUpdate update =
-      out.loop_correction || mapped.global_ba_applied ? mapper_.wholeMap() : mapped.adjusted;
-  update.erased_keyframes = mapped.culled_keyframes;
+  return mapped;
+}
+
+MapUpdate System::updateOf(const std::optional<KeyFrameInsertionStats>& mapped, bool whole_map,
+                           MapJournal journal) {
+  MapUpdate update = whole_map ? mapper_.wholeMap() : mapped->adjusted;
+  if (mapped) update.erased_keyframes = mapped->culled_keyframes;
   update.erased_points = map_.takeRemovedPoints();
   update.erased_lines = map_.takeRemovedLines();
   update.journal = std::move(journal);
-  out.map_update = std::make_shared<const MapUpdate>(std::move(update));
-  out.ms = mapping.elapsedMs();
-  return out;
+  update.world_corrections = std::exchange(corrections_, {});
+  ++updates_made_;
+  for (const auto& e : update.journal.entries)
+    if (e.change == MapJournal::Change::kReplace) {
+      merged_[e.point] = e.winner;
+      merge_log_.emplace_back(updates_made_, e.point);
+    }
+  return update;
 }
 
 std::vector<MappedKeyFrame> System::finishMapping() {
@@ -243,7 +295,14 @@ std::vector<MappedKeyFrame> System::finishMapping() {
   mapper_.waitForGlobalBundleAdjustment();
   if (mapper_.globalBundleAdjustmentSolved()) mapping_thread_->push(MappingJob{});
   mapping_thread_->waitIdle();
-  return mapping_thread_->takeFinished();
+  return followed(mapping_thread_->takeFinished());
+}
+
+std::vector<MappedKeyFrame> System::followed(std::vector<MappedKeyFrame> mapped) {
+  if (!tracking_map_) return mapped;
+  std::lock_guard<std::mutex> lock(tracking_map_->updateMutex());
+  for (const auto& m : mapped) followMapper(*m.map_update);
+  return mapped;
 }
 
 std::vector<MappedKeyFrame> System::takeMapped() {
@@ -252,7 +311,7 @@ std::vector<MappedKeyFrame> System::takeMapped() {
   // writes it back now rather than at the next keyframe.
   if (mapping_thread_->backlog() == 0 && mapper_.globalBundleAdjustmentSolved())
     mapping_thread_->push(MappingJob{});
-  return mapping_thread_->takeFinished();
+  return followed(mapping_thread_->takeFinished());
 }
 
 size_t System::mappingBacklog() const { return mapping_thread_ ? mapping_thread_->backlog() : 0; }
@@ -290,6 +349,7 @@ void System::markInliers(const Frame& frame, std::vector<FeatureMark>& marks) {
 
 void System::reanchorTrackedFrames(const std::vector<long>& erased) {
   if (erased.empty()) return;
+  std::lock_guard<std::mutex> lock(anchors_mutex_);
   std::map<long, std::shared_ptr<const KeyFrame>> keyframes;
   AnchoredTrajectory::KeyFramePoses live;
   for (const auto& kf : map_.keyFrames()) {
@@ -299,6 +359,9 @@ void System::reanchorTrackedFrames(const std::vector<long>& erased) {
   for (long id : erased) {
     const auto culled = anchors_.find(id);
     if (culled == anchors_.end()) continue;  // no frame hangs from it
+    // The tracker's own keyframe (it took it as reference after this map had it culled): its
+    // frames stay on it, the tracker's copy holds it as the mapping side last placed it.
+    if (unmapped_anchors_.count(id)) continue;
     // Culled just now, so its pose still agrees with the map's.
     const long anchor = tracked_.reanchor(id, culled->second->T_cw, live);
     anchors_.erase(culled);
@@ -314,6 +377,7 @@ AnchoredTrajectory::KeyFramePoses System::anchorPoses() const {
 
 Trajectory System::cameraTrajectory() const {
   std::lock_guard<std::mutex> lock(map_.updateMutex());
+  std::lock_guard<std::mutex> anchors_lock(anchors_mutex_);
   return tracked_.trajectory(anchorPoses());
 }
 

@@ -601,10 +601,10 @@ TumRun::TumRun(const Options& options)
       walker_masks_ && !options.live && options.segmentation.kind == "masks" &&
       (options.ground_truth_masks.empty() || options.ground_truth_masks == sequence_.folder());
   if (options.save_images > 0) fs::create_directories(out_ / "images");
-  // Offline the tracker works in a copy of the map of its own, as the tracking process of the
-  // two-process split (issue 17); --realtime shares one map with the mapping thread.
+  // The tracker works in a copy of the map of its own, as the tracking process of the
+  // two-process split (issue 17); --realtime: the mapping side on a thread of its own.
   system_ = std::make_unique<System>(
-      config_, options.realtime ? MappingMode::kOwnThread : MappingMode::kSplit);
+      config_, options.realtime ? MappingMode::kSplitOwnThread : MappingMode::kSplit);
   if (!options.map.empty()) map_json_ = loadSavedMap(*system_, options);
   if (config_.dense.enabled) dense_ = std::make_unique<DenseMappingWorker>(config_.dense);
   timing_ << kTimingHeader;
@@ -720,7 +720,6 @@ Json TumRun::summarise() {
   json["peak_rss_mb"] = nullptr;  // set once the dense maps and the plot are done
   json["loops"] = loopsJson(*system_, corrections_);
   json["mapping"] = {{"own_thread", options_.realtime},
-                     {"tracker_map_copy", !options_.realtime},
                      {"longest_queue", system_->longestMappingQueue()}};
   evaluation_ = evaluate(sequence_, trajectory_);
   json.update(evaluation_.fields);

@@ -88,6 +88,10 @@ struct MapUpdate {
   // Who sees what, changed in this order (merges, outliers unlinked, erasures): with the values
   // above, what a copy of the map needs to follow (Map::apply). The messages do not carry it.
   MapJournal journal;
+  // How the mapping side moved the world meanwhile (loop corrections, global bundle adjustments
+  // written back), in order: T_wc(after) = correction * T_wc(before) for the newest keyframe it
+  // had. Whoever tracks in a copy moves along (Tracker::applyCorrection). Not in the messages.
+  std::vector<Eigen::Isometry3d> world_corrections;
 };
 
 }  // namespace ply_slam

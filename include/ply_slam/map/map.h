@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <mutex>
+#include <unordered_map>
 #include <vector>
 
 #include "ply_slam/map/key_frame.h"
@@ -89,6 +90,13 @@ class Map {
   void addObservationLocked(KeyFrame& keyframe, size_t index,
                             const std::shared_ptr<MapPoint>& point);
   void removeObservationLocked(KeyFrame& keyframe, size_t index);
+  using PointsById = std::unordered_map<long, std::shared_ptr<MapPoint>>;
+  using LinesById = std::unordered_map<long, std::shared_ptr<MapLine>>;
+  // apply: erases what the update says left the mapping side's map and is still here.
+  void eraseGone(const MapUpdate& update, const PointsById& points, const LinesById& lines);
+  // replay's link: as addObservationLocked, over whatever link the keyframe holds there.
+  void addObservationFollowed(KeyFrame& keyframe, size_t index,
+                              const std::shared_ptr<MapPoint>& point);
   void erasePointLocked(MapPoint& point);
   void unlinkLandmarksLocked(KeyFrame& keyframe, int min_point_observers);
   void reparentChildrenLocked(KeyFrame& keyframe);

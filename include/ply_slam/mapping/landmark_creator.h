@@ -29,12 +29,17 @@ class LandmarkCreator : public LandmarkSink {
 
   // Writes what the calls above do into `report` (by id) as well, until called with nullptr.
   void reportTo(TrackerReport* report) { report_ = report; }
+  // Points this map merged away (loser id -> winner id) that another copy may still name.
+  using MergedPoints = std::unordered_map<long, long>;
   // Does to this creator's map what `report` says another creator did to its own copy:
   // counts, line fits, then `keyframe` (that creator's keyframe with its features and pose,
-  // without links; its id kept) with its links and new landmarks (ids kept). Links to a
+  // without links; its id kept) with its links and new landmarks (ids kept). What it says of a
+  // point in `merged` goes to the point it was merged into, as that copy does when it follows
+  // the merge (a link only where the keyframe does not see that point already). Links to a
   // landmark this map no longer has are left out. Returns the keyframe. Throws
   // std::invalid_argument, changing nothing, when the report is of another keyframe.
-  std::shared_ptr<KeyFrame> replay(const TrackerReport& report, std::shared_ptr<KeyFrame> keyframe);
+  std::shared_ptr<KeyFrame> replay(const TrackerReport& report, std::shared_ptr<KeyFrame> keyframe,
+                                   const MergedPoints& merged = {});
 
  private:
   void addPoints(Frame& frame, KeyFrame& keyframe);
@@ -49,7 +54,7 @@ class LandmarkCreator : public LandmarkSink {
   using PointsById = std::unordered_map<long, std::shared_ptr<MapPoint>>;
   using LinesById = std::unordered_map<long, std::shared_ptr<MapLine>>;
   void replayPoints(const std::vector<TrackerReport::PointLink>& links, const PointsById& points,
-                    KeyFrame& keyframe);
+                    const MergedPoints& merged, KeyFrame& keyframe);
   void replayLines(const std::vector<TrackerReport::LineLink>& links, const LinesById& lines,
                    KeyFrame& keyframe);
   // Inverse variance of a point at depth z seen at the scale of pyramid level `scale`: depth

@@ -78,9 +78,9 @@ class Mapper {
   LandmarkSink& landmarkSink() { return creator_; }
   // What a tracker working on a copy of the map reported, done to this map, with that
   // tracker's new keyframe (its unlinked copy, KeyFrame::unlinkedCopy): LandmarkCreator::replay.
-  std::shared_ptr<KeyFrame> replay(const TrackerReport& report,
-                                   std::shared_ptr<KeyFrame> keyframe) {
-    return creator_.replay(report, std::move(keyframe));
+  std::shared_ptr<KeyFrame> replay(const TrackerReport& report, std::shared_ptr<KeyFrame> keyframe,
+                                   const LandmarkCreator::MergedPoints& merged = {}) {
+    return creator_.replay(report, std::move(keyframe), merged);
   }
   // The new keyframe and the first one are always kept, and those made after the new one.
   // Culled keyframes leave the place database too.

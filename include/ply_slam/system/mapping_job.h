@@ -8,6 +8,7 @@
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/map/tracker_report.h"
 #include "ply_slam/mapping/loop_corrector.h"
 #include "ply_slam/semantic/instance.h"
 
@@ -21,6 +22,12 @@ struct MappingJob {
   std::vector<Instance> instances;  // as judged
   std::set<int> dynamic_ids;
   cv::Mat dynamic_mask;
+  // Split modes: what the tracker did to its copy of the map since the keyframe before, and
+  // `keyframe` is the mapping side's own (KeyFrame::unlinkedCopy).
+  TrackerReport report;
+  // Split modes: how many updates the tracker's copy had followed when the report began: the
+  // merges of later ones it may not know (LandmarkCreator::replay's `merged`).
+  long followed_updates = 0;
 
   // The same job owning copies of its images: the mapping side may run later on another
   // thread while the caller reuses its buffers, and the keyframe packet keeps these copies.

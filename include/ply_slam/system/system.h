@@ -1,9 +1,12 @@
 #pragma once
 
+#include <atomic>
+#include <deque>
 #include <future>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -77,8 +80,9 @@ class InvalidFrame : public std::invalid_argument {
 // kInline, but the tracker tracks in a copy of the map of its own, as the tracking process of
 // a two-process split would: the mapping side's map follows the tracker's reports
 // (TrackerReport), the tracker's copy follows the mapping side's updates (MapUpdate with its
-// journal); runs repeat kInline's bit for bit.
-enum class MappingMode { kInline, kOwnThread, kSplit };
+// journal); runs repeat kInline's bit for bit. kSplitOwnThread: so, with the mapping side on a
+// thread of its own; the tracker's copy follows each update at the first frame after it.
+enum class MappingMode { kInline, kOwnThread, kSplit, kSplitOwnThread };
 
 // The whole pipeline in one process, frame by frame: the tracking side in process(), the
 // mapping side as MappingMode says.
@@ -113,7 +117,10 @@ class System {
   GlobalBundleAdjustmentCounts globalBundleAdjustmentCounts() const {
     return mapper_.globalBundleAdjustmentCounts();
   }
+  // The mapping side's map, and the one the tracker tracks in (its own copy in the split
+  // modes; both still while the mapping side works on another thread only).
   const Map& map() const { return map_; }
+  const Map& trackerMap() const { return tracking_map_ ? *tracking_map_ : map_; }
 
   // The map file a saved map is in, inside the folder saveMap and loadMap take.
   static constexpr const char* kMapFileName = "map.plymap";
@@ -164,15 +171,24 @@ class System {
   MappedKeyFrame mapKeyFrame(const MappingJob& job);
   // The frame's pose, hung from the tracker's reference keyframe (with the map's lock held).
   void rememberTracked(const FrameResult& result);
-  // kSplit: the tracker's report since the last keyframe, done to the mapping side's map with
-  // (a copy of) the tracker's new keyframe; returns that copy. With the tracker's map locked.
-  std::shared_ptr<KeyFrame> reportToMapper(const KeyFrame& keyframe);
-  // kSplit: what the mapping side changed, done to the tracker's map (locked by the caller).
+  // Split modes, mapping side: the job's report done to its map with the job's keyframe (an
+  // unlinked copy of the tracker's); anchors on the tracker's keyframes move to the map's.
+  void followTracker(const MappingJob& job);
+  // Split modes, tracking side (its copy locked): what the mapping side changed, done to the
+  // copy; after a whole-map update the keyframes the mapping side has not seen yet move as the
+  // one before them moved, and the tracker as the mapping side told.
   void followMapper(const MapUpdate& update);
-  // The map the tracker tracks in: its own copy with kSplit, else the one map.
+  // Mapping side, a keyframe's map upkeep, its packet, then the loop query (which needs the
+  // packet's images), into `out`.
+  KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
+  // The mapping thread's results, followed by the tracker's copy (split modes).
+  std::vector<MappedKeyFrame> followed(std::vector<MappedKeyFrame> mapped);
+  // Mapping side: what it did, for the copies of the map (`mapped`: none for a global bundle
+  // adjustment written back alone; the journal in the split modes).
+  MapUpdate updateOf(const std::optional<KeyFrameInsertionStats>& mapped, bool whole_map,
+                     MapJournal journal);
+  // The map the tracker tracks in: its own copy in the split modes, else the one map.
   Map& trackingMap() { return tracking_map_ ? *tracking_map_ : map_; }
-  // The mapping side's keyframe of that id (the reference keyframe itself but with kSplit).
-  std::shared_ptr<const KeyFrame> mapperKeyFrame(const std::shared_ptr<KeyFrame>& reference);
   // Frames anchored on keyframes the mapping side erased move to live ones, where they are.
   void reanchorTrackedFrames(const std::vector<long>& erased);
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
@@ -184,20 +200,36 @@ class System {
   DynamicRejector rejector_;
   InstanceMemory memory_;
   Map map_;  // the mapping side's
-  // kSplit (null otherwise): the tracker's copy of the map, the creator writing into it what
-  // the tracker measured, and its report of that since the last keyframe (under the copy's lock).
+  // Split modes (null otherwise): the tracker's copy of the map, the creator writing into it
+  // what the tracker measured, and its report of that since the last keyframe (under the
+  // copy's lock).
   std::unique_ptr<Map> tracking_map_;
   std::unique_ptr<LandmarkCreator> tracking_creator_;
   TrackerReport report_;
+  // Split modes: how the mapping side moved the world while mapping a keyframe, in order, for
+  // its update (the mapping side's thread).
+  std::vector<Eigen::Isometry3d> corrections_;
+  // Split modes: the updates the mapping side made and the tracker's copy followed (each side's
+  // own count), the copy's count when the last keyframe went, and the points the mapping side
+  // merged away that reports may still name, with the update that merged each.
+  long updates_made_ = 0, updates_followed_ = 0, followed_at_last_keyframe_ = 0;
+  LandmarkCreator::MergedPoints merged_;
+  std::deque<std::pair<long, long>> merge_log_;  // (update, loser id), oldest first
+  // The tracker's reference keyframe after the last frame (-1: none), for keyframe culling on
+  // whichever thread maps.
+  std::atomic<long> reference_id_{-1};
   Mapper mapper_;  // before the tracker: it receives what the tracker measured
   Tracker tracker_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
   // Tracked frames, each relative to the tracker's reference keyframe of its time; the
   // mapping side's keyframes they hang from (culled ones are replaced at once, see
-  // reanchorTrackedFrames). Guarded by the mapping side's map's lock: it re-anchors.
+  // reanchorTrackedFrames), in the split modes the tracker's until the mapping side has them
+  // (`unmapped_anchors_`). Guarded by anchors_mutex_, taken after either map's lock.
+  mutable std::mutex anchors_mutex_;
   AnchoredTrajectory tracked_;
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
+  std::set<long> unmapped_anchors_;
   // Last: joined before anything it uses goes. Null with kInline.
   std::unique_ptr<MappingThread> mapping_thread_;
 };
