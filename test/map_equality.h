@@ -25,10 +25,8 @@ inline void expectSameTrajectory(const Trajectory& a, const Trajectory& b) {
   }
 }
 
-// Every field of every keyframe, point and line, exactly (poses within `pose_tolerance`); links
-// compared by id.
-inline void expectSameMap(const Map& a, const Map& b, const std::string& when,
-                          double pose_tolerance = 0.0) {
+// Every field of every keyframe, point and line, exactly; links compared by id.
+inline void expectSameMap(const Map& a, const Map& b, const std::string& when) {
   SCOPED_TRACE(when);
   const auto kfs_a = a.keyFrames(), kfs_b = b.keyFrames();
   ASSERT_EQ(kfs_a.size(), kfs_b.size());
@@ -36,8 +34,7 @@ inline void expectSameMap(const Map& a, const Map& b, const std::string& when,
   for (size_t k = 0; k < kfs_a.size(); ++k) {
     const KeyFrame &x = *kfs_a[k], &y = *kfs_b[k];
     ASSERT_EQ(x.id, y.id);
-    EXPECT_LE((x.T_cw.matrix() - y.T_cw.matrix()).cwiseAbs().maxCoeff(), pose_tolerance)
-        << "keyframe " << x.id;
+    EXPECT_TRUE(x.T_cw.matrix() == y.T_cw.matrix()) << "keyframe " << x.id;
     EXPECT_EQ(x.frame_id, y.frame_id);
     EXPECT_EQ(x.bad, y.bad);
     EXPECT_EQ(id(x.parent), id(y.parent)) << "keyframe " << x.id;

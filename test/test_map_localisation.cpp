@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "default_vocabularies.h"
+#include "map_equality.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/tum_sequence.h"
@@ -37,8 +38,9 @@ struct LoadedRun {
 
 // The frames after the mapped ones, the first `blank` of them black (no mapped view).
 LoadedRun runInLoadedMap(const TumSequence& sequence, const std::string& map_folder,
-                         bool localisation_only, size_t blank = 0) {
-  System system(loopConfig());
+                         bool localisation_only, size_t blank = 0,
+                         MappingMode mode = MappingMode::kInline) {
+  System system(loopConfig(), mode);
   system.loadMap(map_folder, localisation_only);
   LoadedRun run;
   run.keyframes_loaded = system.map().numKeyFrames();
@@ -123,6 +125,16 @@ TEST_F(MapLocalisationTest, ExtendsTheMapWhenAsked) {
   std::cout << "extending: ATE in the map's frame " << in_map.translation.rmse << " m, "
             << run.keyframes_after - run.keyframes_loaded << " keyframes added\n";
   EXPECT_LE(in_map.translation.rmse, 1.5 * mapping_ate_.translation.rmse);
+}
+
+// ply_slam_tum's way: the tracker in a copy of the loaded map, the mapping side in the map.
+TEST_F(MapLocalisationTest, ExtendsTheMapTheSameWithTheTrackerInACopy) {
+  const LoadedRun one_map = runInLoadedMap(*sequence_, dir_.path().string(), false);
+  const LoadedRun split =
+      runInLoadedMap(*sequence_, dir_.path().string(), false, 0, MappingMode::kSplit);
+  EXPECT_GT(split.keyframes_after, split.keyframes_loaded);
+  EXPECT_EQ(split.keyframes_after, one_map.keyframes_after);
+  test::expectSameTrajectory(split.trajectory, one_map.trajectory);
 }
 
 }  // namespace

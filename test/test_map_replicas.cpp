@@ -120,7 +120,7 @@ class ReplicaRun {
     if (::testing::Test::HasFatalFailure()) return;
     const bool loop = followMapper(result.new_keyframe, images, when);
     if (::testing::Test::HasFatalFailure()) return;
-    if (loop || keyframes % check_every_ == 0) test::expectSameMap(follower_, map_, when, 1e-12);
+    if (loop || keyframes % check_every_ == 0) test::expectSameMap(follower_, map_, when);
   }
 
   int keyframes = 0, line_fits = 0, fused_depths = 0, changes = 0, culled_keyframes = 0;

@@ -71,10 +71,20 @@ TEST_P(MapStoreFollowsSystem, SamePointsAndKeyFramesAsTheMap) {
     EXPECT_TRUE(store.keyFrames().at(kf->id).T_wc.isApprox(kf->T_wc(), 1e-12)) << kf->id;
 }
 
-INSTANTIATE_TEST_SUITE_P(BothMappingModes, MapStoreFollowsSystem,
-                         testing::Values(MappingMode::kInline, MappingMode::kOwnThread),
+INSTANTIATE_TEST_SUITE_P(EveryMappingMode, MapStoreFollowsSystem,
+                         testing::Values(MappingMode::kInline, MappingMode::kOwnThread,
+                                         MappingMode::kSplit, MappingMode::kSplitOwnThread),
                          [](const testing::TestParamInfo<MappingMode>& info) {
-                           return info.param == MappingMode::kInline ? "Inline" : "OwnThread";
+                           switch (info.param) {
+                             case MappingMode::kInline:
+                               return "Inline";
+                             case MappingMode::kOwnThread:
+                               return "OwnThread";
+                             case MappingMode::kSplit:
+                               return "Split";
+                             default:
+                               return "SplitOwnThread";
+                           }
                          });
 
 }  // namespace

@@ -105,8 +105,10 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   std::unique_lock<std::mutex> lock(trackingMap().updateMutex());
   result.timing.map_wait_ms = tracking.elapsedMs();
   if (mapping_thread_) result.mapped = mapping_thread_->takeFinished();
+  Stopwatch follow;
   if (tracking_map_)
     for (const auto& mapped : result.mapped) followMapper(*mapped.map_update);
+  result.timing.follow_ms = follow.elapsedMs();
   result.tracking = tracker_.track(frame);
   if (const auto& reference = tracker_.referenceKeyFrame()) reference_id_ = reference->id;
   result.timing.tracking_ms = tracking.elapsedMs();

@@ -37,6 +37,8 @@ struct FrameTiming {
                              // fitting side by side (0 when disabled); not a share of total_ms
   double tracking_ms = 0.0;  // matching, pose optimisation, keyframe insertion
   double map_wait_ms = 0.0;  // of tracking_ms, waiting for the map's lock (the mapping thread)
+  double follow_ms = 0.0;    // of tracking_ms, the tracker's copy following the mapping side's
+                             // updates that came since the last frame (kSplitOwnThread)
   double total_ms = 0.0;     // features + lines + tracking: what the frame costs the tracking side
   double mapping_ms = 0.0;   // the mapping side's work delivered with this frame (on its own
                              // thread with MappingMode::kOwnThread: not a share of total_ms)
