@@ -419,7 +419,7 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
   // Read and checked whole before anything changes: a bad file leaves the system as it was.
   const std::string file = (std::filesystem::path(folder) / kMapFileName).string();
   MapFileContents loaded = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
-  // kSplit: the tracker's copy is a map of its own, from the same file.
+  // The split modes: the tracker's copy is a map of its own, from the same file.
   std::optional<MapFileContents> tracker_copy;
   if (tracking_map_) tracker_copy = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
   long last_frame = -1;
