@@ -206,6 +206,24 @@ TEST(ErasePoint, UnlinksItFromEveryKeyFrame) {
   expectConsistent(h.map_);
 }
 
+// A keyframe can hold one point at two keypoints (its frame matched it twice): unlinking one
+// leaves the other linked and counted, so that erasing the point later unlinks it too.
+TEST(RemoveObservation, LeavesTheOtherKeypointOfAPointSeenTwice) {
+  HandMap h(3);
+  h.addChain(2);
+  h.see(1, 0, 3);
+  KeyFrame& twice = *h.keyframes_[0];
+  h.map_.addObservation(twice, 0, h.points_[2]);
+  h.map_.addObservation(twice, 2, h.points_[2]);
+  h.map_.removeObservation(twice, 0);
+  EXPECT_EQ(twice.map_points[0], nullptr);
+  ASSERT_EQ(twice.map_points[2], h.points_[2]);
+  EXPECT_TRUE(h.points_[2]->seenBy(&twice));
+  EXPECT_EQ(twice.covisibility.at(h.keyframes_[1].get()), 1);
+  h.map_.erasePoint(h.points_[2]);
+  EXPECT_EQ(twice.map_points[2], nullptr);  // no link left to an erased point
+}
+
 // What left the container is named once, for the MapUpdate that tells mapping_node.
 TEST(RemoveBadPoints, NamesTheRemovedPointsOnce) {
   HandMap h(4);

@@ -90,11 +90,12 @@ void Map::removeObservationLocked(KeyFrame& keyframe, size_t index) {
   if (!point) return;
   keyframe.map_points[index] = nullptr;
   auto& observers = point->observers;
-  observers.erase(
-      std::remove_if(observers.begin(), observers.end(),
-                     [&](const MapPoint::Observer& o) { return o.keyframe == &keyframe; }),
-      observers.end());
+  const auto entry = std::find_if(
+      observers.begin(), observers.end(),
+      [&](const MapPoint::Observer& o) { return o.keyframe == &keyframe && o.index == index; });
+  if (entry != observers.end()) observers.erase(entry);
   for (const auto& o : observers) {
+    if (o.keyframe == &keyframe) continue;
     // Covisibility counts shared landmarks; this one is no longer shared.
     if (--keyframe.covisibility[o.keyframe] <= 0) keyframe.covisibility.erase(o.keyframe);
     if (--o.keyframe->covisibility[&keyframe] <= 0) o.keyframe->covisibility.erase(&keyframe);
