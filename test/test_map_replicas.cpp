@@ -82,6 +82,14 @@ TEST(MapReplicas, JournalEntriesNamingWhatTheCopyHasNotAreLeftOut) {
   EXPECT_EQ(copy.b->covisibility.size(), 0u);
 }
 
+// fr1_rpy_150_349 with lines on: real frames where lines fuse between keyframes.
+std::string rpyFolder() { return test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349"); }
+SystemConfig rpyConfig() {
+  SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
+  config.lines.enabled = true;
+  return config;
+}
+
 // The corridor walked once round and back to its start (as ply_slam_synth --loop renders it).
 constexpr int kLoopFrames = 600;
 
@@ -171,11 +179,9 @@ class ReplicaRun {
 };
 
 TEST(MapReplicas, FollowTheTrackerByItsReportAndTheMapperByItsUpdate) {
-  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
-  SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
-  config.lines.enabled = true;
+  SystemConfig config = rpyConfig();
   config.loop.enabled = false;
-  const TumSequence sequence(folder);
+  const TumSequence sequence(rpyFolder());
   ReplicaRun run(config, 1);
   for (size_t i = 0; i < sequence.size() && i < 120; ++i) {
     run.process(static_cast<long>(i), sequence.load(i, config.camera.depth_factor));
@@ -193,11 +199,9 @@ TEST(MapReplicas, FollowTheTrackerByItsReportAndTheMapperByItsUpdate) {
 // The system with the tracker in a copy of the map of its own (MappingMode::kSplit: the copies
 // follow each other by reports and updates) tracks and maps as it does in one map, bit for bit.
 TEST(MapReplicas, ASystemTrackingInACopyRepeatsTheRunInOneMap) {
-  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
-  SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
-  config.lines.enabled = true;
+  SystemConfig config = rpyConfig();
   config.loop.enabled = false;
-  const TumSequence sequence(folder);
+  const TumSequence sequence(rpyFolder());
   System one_map(config, MappingMode::kInline), split(config, MappingMode::kSplit);
   long keyframes = 0;
   for (size_t i = 0; i < sequence.size() && i < 120; ++i) {
@@ -217,10 +221,8 @@ TEST(MapReplicas, ASystemTrackingInACopyRepeatsTheRunInOneMap) {
 // frames late and the tracker goes on meanwhile; once the mapping side has caught up, the copy
 // holds the same keyframes where the mapping side put them and the same landmarks.
 TEST(MapReplicas, ATrackerOnItsOwnThreadFollowsTheMapperOnAnother) {
-  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349");
-  SystemConfig config = loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
-  config.lines.enabled = true;
-  const TumSequence sequence(folder);
+  const SystemConfig config = rpyConfig();
+  const TumSequence sequence(rpyFolder());
   System split(config, MappingMode::kSplitOwnThread);
   size_t lost = 0;
   for (size_t i = 0; i < sequence.size(); ++i)

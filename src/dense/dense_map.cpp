@@ -65,8 +65,10 @@ std::vector<long> DenseMap::applyUpdate(const MapUpdate& update) {
   std::vector<long> changed;
   for (const auto& pose : update.keyframes) {
     const auto it = keyframes_.find(pose.id);
-    if (it == keyframes_.end() || !poseChanged(it->second.T_wc, pose.T_wc())) continue;
-    it->second.T_wc = pose.T_wc();
+    if (it == keyframes_.end()) continue;
+    const Eigen::Isometry3d T_wc = pose.T_wc();
+    if (!poseChanged(it->second.T_wc, T_wc)) continue;
+    it->second.T_wc = T_wc;
     changed.push_back(pose.id);
   }
   if (!changed.empty()) dirty_ = true;

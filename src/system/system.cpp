@@ -201,28 +201,35 @@ void System::followTracker(const MappingJob& job) {
 
 void System::followMapper(const MapUpdate& update) {
   Map& copy = *tracking_map_;
-  // Alive through the update, which may erase some (their poses are read after).
-  const std::vector<std::shared_ptr<KeyFrame>> keyframes = copy.keyFrames();
-  std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> before;
-  for (const auto& kf : keyframes) before.emplace_back(kf.get(), kf->T_wc());
-  copy.apply(update);
   if (update.whole_map) {
-    std::set<long> solved_ids;
-    for (const auto& pose : update.keyframes) solved_ids.insert(pose.id);
-    std::set<const KeyFrame*> solved;
-    std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> kept;
-    for (const auto& [kf, T_wc] : before) {
-      if (kf->bad) continue;
-      if (solved_ids.count(kf->id)) solved.insert(kf);
-      kept.emplace_back(kf, T_wc);
-    }
-    carryAlong(copy, solved, kept);
+    followWholeMap(update);
+  } else {
+    copy.apply(update);
   }
   for (const auto& correction : update.world_corrections) tracker_.applyCorrection(correction);
   ++updates_followed_;
   // What left the tracker's copy is the mapping side's to tell (the update says it).
   copy.takeRemovedPoints();
   copy.takeRemovedLines();
+}
+
+void System::followWholeMap(const MapUpdate& update) {
+  Map& copy = *tracking_map_;
+  // Alive through the update, which may erase some (their poses are read after).
+  const std::vector<std::shared_ptr<KeyFrame>> keyframes = copy.keyFrames();
+  std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> before;
+  for (const auto& kf : keyframes) before.emplace_back(kf.get(), kf->T_wc());
+  copy.apply(update);
+  std::set<long> solved_ids;
+  for (const auto& pose : update.keyframes) solved_ids.insert(pose.id);
+  std::set<const KeyFrame*> solved;
+  std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> kept;
+  for (const auto& [kf, T_wc] : before) {
+    if (kf->bad) continue;
+    if (solved_ids.count(kf->id)) solved.insert(kf);
+    kept.emplace_back(kf, T_wc);
+  }
+  carryAlong(copy, solved, kept);
 }
 
 void System::rememberTracked(const FrameResult& result) {

@@ -180,6 +180,9 @@ class System {
   // copy; after a whole-map update the keyframes the mapping side has not seen yet move as the
   // one before them moved, and the tracker as the mapping side told.
   void followMapper(const MapUpdate& update);
+  // followMapper's whole-map update (after a loop or a global BA): keyframes the mapping side
+  // has not seen move as the one before them moved (carryAlong).
+  void followWholeMap(const MapUpdate& update);
   // Mapping side, a keyframe's map upkeep, its packet, then the loop query (which needs the
   // packet's images), into `out`.
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
