@@ -1,4 +1,5 @@
-// libFuzzer entry point; what it does with an input: ply_slam_fuzz::mapSnapshotMsg (target_inputs.h).
+// libFuzzer entry point; what it does with an input: ply_slam_fuzz::mapSnapshotMsg
+// (target_inputs.h).
 #include "target_inputs.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -14,6 +14,7 @@
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
+#include "ply_slam/ros/split_messages.h"
 
 namespace ply_slam_fuzz {
 namespace {
@@ -122,12 +123,24 @@ void mapUpdateMsg(const uint8_t* data, size_t size) {
 void mapSnapshotMsg(const uint8_t* data, size_t size) {
   decodeMessage<ply_slam::MapSnapshotMsg>(data, size);
 }
+void mappingJobMsg(const uint8_t* data, size_t size) {
+  ply_slam::MappingJobMsg msg;
+  if (!deserialize(data, size, msg)) return;
+  static const std::vector<double> scales{1.0, 1.2, 1.44, 1.728};  // a pyramid of 4 levels
+  try {
+    ply_slam::fromMsg(msg, &scales);
+  } catch (const std::invalid_argument&) {  // documented: an inconsistent message
+  }
+}
 
 const std::map<std::string, Target>& targets() {
-  static const std::map<std::string, Target> all{
-      {"fuzz_config", configText},           {"fuzz_tum_lists", tumLists},
-      {"fuzz_rgbd_decoder", rgbdMessages},   {"fuzz_keyframe_msg", keyFrameMsg},
-      {"fuzz_map_update_msg", mapUpdateMsg}, {"fuzz_map_snapshot_msg", mapSnapshotMsg}};
+  static const std::map<std::string, Target> all{{"fuzz_config", configText},
+                                                 {"fuzz_tum_lists", tumLists},
+                                                 {"fuzz_rgbd_decoder", rgbdMessages},
+                                                 {"fuzz_keyframe_msg", keyFrameMsg},
+                                                 {"fuzz_map_update_msg", mapUpdateMsg},
+                                                 {"fuzz_map_snapshot_msg", mapSnapshotMsg},
+                                                 {"fuzz_mapping_job_msg", mappingJobMsg}};
   return all;
 }
 

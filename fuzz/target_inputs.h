@@ -19,6 +19,7 @@ void rgbdMessages(const uint8_t* data, size_t size);    // RgbdMessageDecoder
 void keyFrameMsg(const uint8_t* data, size_t size);     // fromMsg(KeyFrameMsg)
 void mapUpdateMsg(const uint8_t* data, size_t size);    // fromMsg(MapUpdateMsg)
 void mapSnapshotMsg(const uint8_t* data, size_t size);  // fromMsg(MapSnapshotMsg)
+void mappingJobMsg(const uint8_t* data, size_t size);   // fromMsg(MappingJobMsg)
 
 // By target name (fuzz_config, ...): the folder names under test/fuzz_regressions.
 const std::map<std::string, Target>& targets();

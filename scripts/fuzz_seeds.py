@@ -17,8 +17,10 @@ import cv2
 import numpy as np
 import yaml
 from geometry_msgs.msg import Pose, PoseStamped
-from ply_slam.msg import (CameraMsg, InstanceMsg, KeyFrameMsg, KeyFramePoseMsg, KeypointMsg,
-                          LandmarkMsg, Line3DMsg, MapSnapshotMsg, MapUpdateMsg)
+from ply_slam.msg import (CameraMsg, FeatureMsg, InstanceMsg, JournalEntryMsg, KeyFrameMsg,
+                          KeyFramePoseMsg, KeypointMsg, LandmarkCountsMsg, LandmarkMsg, Line3DMsg,
+                          LineFitMsg, LineLinkMsg, MapLineMsg, MapPointMsg, MappingJobMsg,
+                          MapSnapshotMsg, MapUpdateMsg, PointLinkMsg, RigidTransformMsg)
 from sensor_msgs.msg import CameraInfo, Image
 
 HEAD_LINES = 12  # per list file: enough for every format, small enough to mutate fast
@@ -59,6 +61,46 @@ def pose(v):
     p.position.x, p.position.y, p.position.z = v[1:4]
     p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w = v[4:8]
     return p
+
+
+def rigid_cw(v):
+    """The world -> camera transform of a ground-truth line (camera -> world) as a 3x4 matrix."""
+    x, y, z, w = np.array(v[4:8]) / np.linalg.norm(v[4:8])
+    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    t = -r.T @ np.array(v[1:4])
+    return RigidTransformMsg(matrix=list(np.hstack([r.T, t[:, None]]).ravel()))
+
+
+def mapping_job(v, rgb, depth):
+    """A keyframe of four features with a report of every kind of entry, and its images."""
+    j = MappingJobMsg(id=4, frame_id=12, stamp=v[0], T_cw=rigid_cw(v), image_width=SIDE[0],
+                      image_height=SIDE[1], depth_dt=0.01, line_slots=2, followed_updates=3)
+    j.features = [FeatureMsg(x=3.0 * i, y=2.0 * i, size=31, angle=10.0 * i, response=0.5,
+                             octave=i % 3, rectified_u=3.0 * i, rectified_v=2.0 * i, u=3.0 * i,
+                             v=2.0 * i, depth=1.0 + 0.2 * i) for i in range(4)]
+    j.descriptors = bytes((5 * i) % 256 for i in range(4 * 32))
+    point = MapPointMsg(id=9, min_distance=0.2, max_distance=3.0, position_weight=10.0,
+                        descriptor=bytes(range(32)), visible=1, found=1, first_keyframe=4)
+    point.normal.z = 1.0
+    line = MapLineMsg(id=2, start_weight=1.0, end_weight=2.0, descriptor=bytes(range(32)),
+                      first_keyframe=4, observations=1, found=1)
+    line.end.x = 1.0
+    r = j.report
+    r.keyframe = 4
+    r.points = [LandmarkCountsMsg(id=1, visible=2, found=1)]
+    r.lines = [LandmarkCountsMsg(id=2, found=1)]
+    r.line_fits = [LineFitMsg(id=2, start_weight=1.0, end_weight=1.0)]
+    r.point_links = [PointLinkMsg(keypoint=0, id=9, created=[point]),
+                     PointLinkMsg(keypoint=2, id=1, weight=5.0)]
+    r.line_links = [LineLinkMsg(line=1, id=2, created=[line])]
+    j.rgb = image(rgb, "bgr8")
+    j.depth = image(depth.astype(np.float32) / 5000.0, "32FC1")
+    j.label_image = image(np.ones(depth.shape, np.uint16), "16UC1")
+    j.instances = [InstanceMsg(id=1, class_name="person", score=0.8, dynamic=True)]
+    j.dynamic_mask.encoding = "mono8"
+    return j
 
 
 def image(array, encoding):
@@ -140,13 +182,18 @@ def sequence_seeds(folder, config, out):
           serialize(keyframe(1, poses[-1], cam, rgb, depth, False)))
 
     update = MapUpdateMsg(stamp=poses[-1][0], whole_map=True)
-    update.keyframes = [KeyFramePoseMsg(id=i, T_wc=pose(v)) for i, v in enumerate(poses[:4])]
+    update.keyframes = [KeyFramePoseMsg(id=i, T_cw=rigid_cw(v), parent=i - 1)
+                        for i, v in enumerate(poses[:4])]
     update.points = k0.points
     update.lines = k0.lines
     update.erased_points = [3]
     update.erased_lines = [1]
     update.erased_keyframes = [2]
+    update.journal = [JournalEntryMsg(change=c, keyframe=1, point=3, winner=1, index=2,
+                                      min_point_observers=3) for c in range(5)]
+    update.world_corrections = [rigid_cw(poses[1])]
     write(out, "fuzz_map_update_msg", name, serialize(update))
+    write(out, "fuzz_mapping_job_msg", name, serialize(mapping_job(poses[0], rgb, depth)))
 
     snapshot = MapSnapshotMsg(next_keyframe_sequence=2, next_update_sequence=1)
     snapshot.keyframes = [keyframe(i, v, cam, rgb, depth, False) for i, v in enumerate(poses[:2])]

@@ -1,6 +1,5 @@
 #include "ply_slam/ros/conversions.h"
 
-#include <cv_bridge/cv_bridge.h>
 #include <sensor_msgs/image_encodings.h>
 
 #include <algorithm>
@@ -8,66 +7,51 @@
 #include <stdexcept>
 
 #include "ply_slam/common/camera_check.h"
-#include "ply_slam/ros/image_layout.h"
+#include "ply_slam/ros/message_parts.h"
 
 namespace ply_slam {
 namespace {
 
 namespace enc = sensor_msgs::image_encodings;
 
-geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p) {
-  geometry_msgs::Point m;
-  m.x = p.x();
-  m.y = p.y();
-  m.z = p.z();
-  return m;
-}
-
-// Every number from a message is checked: one NaN in a landmark or a pose would spread
-// through the map.
-Eigen::Vector3d fromPointMsg(const geometry_msgs::Point& m) {
-  const Eigen::Vector3d p(m.x, m.y, m.z);
-  if (!p.allFinite()) throw std::invalid_argument("a point or position is not finite");
-  return p;
-}
-
 void throwOnCameraProblem(const PinholeCamera& camera, const std::string& source) {
   if (const auto problem = findCameraProblem(camera))
     throw std::invalid_argument(source + ": " + problem->key + " " + problem->what);
 }
 
+}  // namespace
+
+// The element conversions are not in the anonymous namespace: toMsgs / fromMsgs find them by
+// argument-dependent lookup, which does not look there.
 LandmarkMsg toMsg(const LandmarkPoint& p) {
   LandmarkMsg m;
   m.id = p.id;
   m.position = toPointMsg(p.position);
+  m.normal = toVector3Msg(p.normal);
+  m.position_weight = p.position_weight;
   return m;
 }
 
-LandmarkPoint fromMsg(const LandmarkMsg& m) { return {m.id, fromPointMsg(m.position)}; }
+LandmarkPoint fromMsg(const LandmarkMsg& m) {
+  if (!std::isfinite(m.position_weight))
+    throw std::invalid_argument("a landmark's weight is not finite");
+  return {m.id, fromPointMsg(m.position), fromVector3Msg(m.normal), m.position_weight};
+}
 
 Line3DMsg toMsg(const LandmarkLine& l) {
   Line3DMsg m;
   m.id = l.id;
   m.start = toPointMsg(l.start);
   m.end = toPointMsg(l.end);
+  m.start_weight = l.start_weight;
+  m.end_weight = l.end_weight;
   return m;
 }
 
 LandmarkLine fromMsg(const Line3DMsg& m) {
-  return {m.id, fromPointMsg(m.start), fromPointMsg(m.end)};
-}
-
-InstanceMsg toMsg(const PacketInstance& instance) {
-  InstanceMsg m;
-  m.id = instance.id;
-  m.class_name = instance.class_name;
-  m.score = instance.score;
-  m.dynamic = instance.dynamic;
-  return m;
-}
-
-PacketInstance fromMsg(const InstanceMsg& m) {
-  return {m.id, m.class_name, m.score, static_cast<bool>(m.dynamic)};
+  if (!std::isfinite(m.start_weight) || !std::isfinite(m.end_weight))
+    throw std::invalid_argument("a line's weight is not finite");
+  return {m.id, fromPointMsg(m.start), fromPointMsg(m.end), m.start_weight, m.end_weight};
 }
 
 CameraMsg toMsg(const PinholeCamera& c) {
@@ -114,31 +98,6 @@ PinholeCamera fromMsg(const CameraMsg& m) {
   throwOnCameraProblem(c, "keyframe camera");
   return c;
 }
-
-// An empty cv::Mat travels as a 0x0 image.
-sensor_msgs::Image toImageMsg(const cv::Mat& image, const std::string& encoding) {
-  sensor_msgs::Image m;
-  if (image.empty()) {
-    m.encoding = encoding;
-    return m;
-  }
-  cv_bridge::CvImage(std_msgs::Header(), encoding, image).toImageMsg(m);
-  return m;
-}
-
-cv::Mat fromImageMsg(const sensor_msgs::Image& m, const std::string& encoding,
-                     const std::string& what) {
-  if (m.width == 0 || m.height == 0) return {};
-  if (m.encoding != encoding)
-    throw std::invalid_argument("keyframe " + what + " must be " + encoding + ", not " +
-                                m.encoding);
-  // cv_bridge checks the layout too, but with 32-bit sums that a huge width wraps round.
-  const std::string error = imageLayoutError(m);
-  if (!error.empty()) throw std::invalid_argument("keyframe " + what + ": " + error);
-  return cv_bridge::toCvCopy(m, encoding)->image;
-}
-
-}  // namespace
 
 geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& T) {
   geometry_msgs::Pose m;
@@ -199,35 +158,17 @@ PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera 
   return camera;
 }
 
-namespace {
-
 KeyFramePoseMsg toMsg(const MapUpdate::KeyFramePose& k) {
   KeyFramePoseMsg m;
   m.id = k.id;
-  m.T_wc = toPoseMsg(k.T_wc());
+  m.T_cw = toRigidMsg(k.T_cw);
+  m.parent = k.parent;
   return m;
 }
 
 MapUpdate::KeyFramePose fromMsg(const KeyFramePoseMsg& m) {
-  return {m.id, fromPoseMsg(m.T_wc).inverse()};
+  return {m.id, fromRigidMsg(m.T_cw), m.parent};
 }
-
-// Element-wise conversions of lists.
-template <typename Msg, typename From>
-std::vector<Msg> toMsgs(const std::vector<From>& from) {
-  std::vector<Msg> to;
-  for (const auto& f : from) to.push_back(toMsg(f));
-  return to;
-}
-
-template <typename To, typename Msg>
-std::vector<To> fromMsgs(const std::vector<Msg>& from) {
-  std::vector<To> to;
-  for (const auto& f : from) to.push_back(fromMsg(f));
-  return to;
-}
-
-}  // namespace
 
 KeyFrameMsg toMsg(const KeyFramePacket& p, const std::string& world_frame) {
   KeyFrameMsg m;
@@ -247,9 +188,8 @@ KeyFrameMsg toMsg(const KeyFramePacket& p, const std::string& world_frame) {
     k.level = i < p.keypoint_level.size() ? p.keypoint_level[i] : 0;
     k.landmark = i < p.keypoint_landmark.size() ? p.keypoint_landmark[i] : -1;
   }
-  const cv::Mat d = p.descriptors.isContinuous() ? p.descriptors : p.descriptors.clone();
-  m.descriptor_bytes = d.cols;
-  m.descriptors.assign(d.data, d.data + d.total() * d.elemSize());
+  m.descriptor_bytes = p.descriptors.cols;
+  m.descriptors = toBytes(p.descriptors);
   m.points = toMsgs<LandmarkMsg>(p.points);
   m.lines = toMsgs<Line3DMsg>(p.lines);
   m.rgb = toImageMsg(p.rgb, enc::BGR8);
@@ -305,6 +245,9 @@ MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
   m.erased_points.assign(u.erased_points.begin(), u.erased_points.end());
   m.erased_lines.assign(u.erased_lines.begin(), u.erased_lines.end());
   m.whole_map = u.whole_map;
+  m.journal = toMsgs<JournalEntryMsg>(u.journal.entries);
+  for (const auto& correction : u.world_corrections)
+    m.world_corrections.push_back(toRigidMsg(correction));
   return m;
 }
 
@@ -318,6 +261,9 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.erased_points.assign(m.erased_points.begin(), m.erased_points.end());
   u.erased_lines.assign(m.erased_lines.begin(), m.erased_lines.end());
   u.whole_map = m.whole_map;
+  u.journal.entries = fromMsgs<MapJournal::Entry>(m.journal);
+  for (const auto& correction : m.world_corrections)
+    u.world_corrections.push_back(fromRigidMsg(correction));
   return u;
 }
 

@@ -30,14 +30,13 @@ KeyFramePacket makeSparseKeyFramePacket(const KeyFrame& keyframe, const PinholeC
   return packet;
 }
 
-KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
-                                  const RgbdImages& images, const std::vector<Instance>& instances,
-                                  const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask) {
-  KeyFramePacket packet = makeSparseKeyFramePacket(keyframe, camera);
-  packet.rgb = images.rgb;
-  packet.depth = images.depth;
+KeyFrameSegmentation segmentationOf(const std::vector<Instance>& instances,
+                                    const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask,
+                                    const cv::Size& size) {
+  KeyFrameSegmentation segmentation;
+  segmentation.dynamic_mask = dynamic_mask;
   if (!instances.empty()) {
-    packet.label_image = cv::Mat::zeros(images.rgb.size(), CV_16UC1);
+    segmentation.label_image = cv::Mat::zeros(size, CV_16UC1);
     // Larger instances first, so a smaller one in front keeps its pixels where they overlap.
     std::vector<std::pair<int, const Instance*>> order;  // (area, instance)
     for (const auto& instance : instances)
@@ -46,12 +45,23 @@ KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera&
                      [](const auto& a, const auto& b) { return a.first > b.first; });
     for (const auto& [area, instance] : order) {
       const int id = std::clamp(instance->id, 1, 65535);
-      packet.label_image.setTo(id, instance->mask);
-      packet.instances.push_back(
+      segmentation.label_image.setTo(id, instance->mask);
+      segmentation.instances.push_back(
           {id, instance->class_name, instance->score, dynamic_ids.count(instance->id) > 0});
     }
   }
-  if (!dynamic_mask.empty()) packet.dynamic_mask = dynamic_mask;
+  return segmentation;
+}
+
+KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
+                                  const RgbdImages& images,
+                                  const KeyFrameSegmentation& segmentation) {
+  KeyFramePacket packet = makeSparseKeyFramePacket(keyframe, camera);
+  packet.rgb = images.rgb;
+  packet.depth = images.depth;
+  packet.label_image = segmentation.label_image;
+  packet.instances = segmentation.instances;
+  packet.dynamic_mask = segmentation.dynamic_mask;
   return packet;
 }
 

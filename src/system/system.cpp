@@ -28,35 +28,45 @@ System::System(const SystemConfig& config, MappingMode mode)
       extractor_(config.orb),
       rejector_(config.dynamic, config.camera),
       memory_(config.dynamic.carry_frames),
-      tracking_map_(mode == MappingMode::kSplit || mode == MappingMode::kSplitOwnThread
-                        ? std::make_unique<Map>()
-                        : nullptr),
+      mapping_(mode == MappingMode::kApart
+                   ? nullptr
+                   : std::make_unique<MappingSide>(
+                         config,
+                         mode == MappingMode::kSplit || mode == MappingMode::kSplitOwnThread,
+                         mode == MappingMode::kInline || mode == MappingMode::kSplit)),
+      tracking_map_(mode == MappingMode::kInline || mode == MappingMode::kOwnThread
+                        ? nullptr
+                        : std::make_unique<Map>()),
       tracking_creator_(tracking_map_ ? std::make_unique<LandmarkCreator>(
                                             config.camera, config.tracking.max_point_depth,
                                             config.lines, *tracking_map_)
                                       : nullptr),
-      mapper_(config.camera, mapperOptions(config), map_,
-              mode == MappingMode::kInline || mode == MappingMode::kSplit),
       tracker_(config.camera, config.tracking, config.orb, config.lines, trackingMap(),
-               tracking_creator_ ? *tracking_creator_ : mapper_.landmarkSink()) {
+               tracking_creator_ ? *tracking_creator_ : mapping_->mapper().landmarkSink()) {
   if (tracking_creator_) tracking_creator_->reportTo(&report_);
   if (config_.lines.enabled) {
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
   }
-  if (mapper_.recognisesPlaces())
+  if (!mapping_) return;  // kApart
+  Mapper& mapper = mapping_->mapper();
+  if (mapper.recognisesPlaces())
     tracker_.setPlaceCandidates([this](const Frame& frame) {
-      return mapper_.recognise(frame.features.descriptors, kRelocalisationCandidates);
+      return mapping_->mapper().recognise(frame.features.descriptors, kRelocalisationCandidates);
     });
-  if (tracking_map_)  // the tracker moves when its copy follows the update that says so
-    mapper_.setCorrectionListener(
-        [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
-  else  // the mapper holds the map's lock when it tells: the tracker is between two frames
-    mapper_.setCorrectionListener(
+  // In the split modes the tracker moves when its copy follows the update that says so; else
+  // the mapper tells it, holding the map's lock: the tracker is between two frames.
+  if (!tracking_map_)
+    mapper.setCorrectionListener(
         [this](const Eigen::Isometry3d& correction) { tracker_.applyCorrection(correction); });
+  MappingSide::Hooks hooks;
+  hooks.keep = [this] { return std::set<long>{reference_id_.load()}; };
+  hooks.culled = [this](const std::vector<long>& culled) { reanchorTrackedFrames(culled); };
+  hooks.replayed = [this] { anchorOnMappedKeyFrames(); };
+  mapping_->setHooks(std::move(hooks));
   if (mode == MappingMode::kOwnThread || mode == MappingMode::kSplitOwnThread)
-    mapping_thread_ =
-        std::make_unique<MappingThread>([this](const MappingJob& job) { return mapKeyFrame(job); });
+    mapping_thread_ = std::make_unique<MappingThread>(
+        [this](const MappingJob& job) { return mapping_->mapKeyFrame(job); });
 }
 
 void System::validate(const RgbdImages& images, const std::vector<Instance>& instances) const {
@@ -86,6 +96,8 @@ void System::validate(const RgbdImages& images, const std::vector<Instance>& ins
 }
 
 FrameResult System::process(const RgbdImages& images, const std::vector<Instance>& instances) {
+  if (!mapping_ && !job_sink_)
+    throw std::logic_error("System::process: MappingMode::kApart needs a job sink");
   validate(images, instances);
   last_stamp_ = images.stamp;
 
@@ -164,20 +176,28 @@ void System::addLines(DetectedLines detected, const RgbdImages& images, const cv
 
 void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mutex>& lock,
                               FrameResult& result) {
-  MappingJob job = MappingJob{result.tracking.new_keyframe, images, result.instances,
-                              result.dynamic_instances, result.dynamic_mask}
-                       .detached();
+  MappingJob job;
+  job.keyframe = result.tracking.new_keyframe;
+  job.images = images;
+  job.segmentation = segmentationOf(result.instances, result.dynamic_instances, result.dynamic_mask,
+                                    images.rgb.size());
+  job = job.detached();
   if (tracking_map_) {  // the mapping side gets a keyframe of its own and the report
     job.keyframe = job.keyframe->unlinkedCopy();
     job.report = std::exchange(report_, TrackerReport{});
     job.followed_updates = std::exchange(followed_at_last_keyframe_, updates_followed_);
+  }
+  job.reference_keyframe = reference_id_.load();
+  if (!mapping_) {  // kApart
+    job_sink_(std::move(job));
+    return;
   }
   if (mapping_thread_) {
     mapping_thread_->push(std::move(job));
     return;
   }
   lock.unlock();
-  result.mapped.push_back(mapKeyFrame(job));
+  result.mapped.push_back(mapping_->mapKeyFrame(job));
   lock.lock();
   if (tracking_map_) followMapper(*result.mapped.back().map_update);
   // The frame was tracked before its keyframe closed the loop: it moves with the map.
@@ -185,18 +205,20 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
     result.tracking.T_cw = result.tracking.T_cw * loop->world_correction.inverse();
 }
 
-void System::followTracker(const MappingJob& job) {
-  // Merges the tracker's copy had followed before the report began are no longer named in it.
-  while (!merge_log_.empty() && merge_log_.front().first <= job.followed_updates) {
-    merged_.erase(merge_log_.front().second);
-    merge_log_.pop_front();
-  }
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
-  mapper_.replay(job.report, job.keyframe, merged_);
+void System::anchorOnMappedKeyFrames() {
   std::lock_guard<std::mutex> anchors_lock(anchors_mutex_);
   if (unmapped_anchors_.empty()) return;
-  for (const auto& kf : map_.keyFrames())
+  for (const auto& kf : mapping_->map().keyFrames())
     if (unmapped_anchors_.erase(kf->id)) anchors_[kf->id] = kf;
+}
+
+void System::followMapUpdate(const MapUpdate& update) {
+  if (mapping_) throw std::logic_error("System::followMapUpdate: only with MappingMode::kApart");
+  std::lock_guard<std::mutex> lock(tracking_map_->updateMutex());
+  // Frames hanging from keyframes the mapping side erased move to live ones first, while the
+  // poses of both still agree.
+  reanchorTrackedFrames(update.erased_keyframes);
+  followMapper(update);
 }
 
 void System::followMapper(const MapUpdate& update) {
@@ -237,63 +259,9 @@ void System::rememberTracked(const FrameResult& result) {
   const auto reference = tracker_.referenceKeyFrame();
   std::lock_guard<std::mutex> lock(anchors_mutex_);
   // In the split modes the tracker's keyframe, until the mapping side has its own (same pose).
-  if (anchors_.emplace(reference->id, reference).second && tracking_map_)
+  if (anchors_.emplace(reference->id, reference).second && tracking_map_ && mapping_)
     unmapped_anchors_.insert(reference->id);
   tracked_.add(result.stamp, reference->id, reference->T_cw, result.tracking.T_cw);
-}
-
-MappedKeyFrame System::mapKeyFrame(const MappingJob& job) {
-  Stopwatch mapping;
-  MappedKeyFrame out;
-  if (tracking_map_ && job.keyframe) followTracker(job);
-  // In the split modes the tracker's copy follows by what this does to the map.
-  MapJournal journal;
-  if (tracking_map_) map_.journalTo(&journal);
-  std::optional<KeyFrameInsertionStats> mapped;
-  if (job.keyframe) {
-    mapped = insertKeyFrame(job, out);
-  } else {  // no keyframe: a global bundle adjustment that ended to write back
-    mapper_.applySolvedGlobalBundleAdjustment();
-  }
-  if (tracking_map_) map_.journalTo(nullptr);
-  const bool whole_map = !mapped || out.loop_correction || mapped->global_ba_applied;
-  out.map_update =
-      std::make_shared<const MapUpdate>(updateOf(mapped, whole_map, std::move(journal)));
-  out.ms = mapping.elapsedMs();
-  return out;
-}
-
-KeyFrameInsertionStats System::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {
-  KeyFrame& keyframe = *job.keyframe;
-  KeyFrameInsertionStats mapped =
-      mapper_.insertKeyFrame(job.keyframe, [this] { return std::set<long>{reference_id_.load()}; });
-  out.culled_points = mapped.culled_points;
-  {
-    std::lock_guard<std::mutex> lock(map_.updateMutex());
-    reanchorTrackedFrames(mapped.culled_keyframes);
-    out.packet = std::make_shared<const KeyFramePacket>(makeKeyFramePacket(
-        keyframe, config_.camera, job.images, job.instances, job.dynamic_ids, job.dynamic_mask));
-  }
-  if (auto correction = mapper_.closeLoop(keyframe, *out.packet))
-    out.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
-  return mapped;
-}
-
-MapUpdate System::updateOf(const std::optional<KeyFrameInsertionStats>& mapped, bool whole_map,
-                           MapJournal journal) {
-  MapUpdate update = whole_map ? mapper_.wholeMap() : mapped->adjusted;
-  if (mapped) update.erased_keyframes = mapped->culled_keyframes;
-  update.erased_points = map_.takeRemovedPoints();
-  update.erased_lines = map_.takeRemovedLines();
-  update.journal = std::move(journal);
-  update.world_corrections = std::exchange(corrections_, {});
-  ++updates_made_;
-  for (const auto& e : update.journal.entries)
-    if (e.change == MapJournal::Change::kReplace) {
-      merged_[e.point] = e.winner;
-      merge_log_.emplace_back(updates_made_, e.point);
-    }
-  return update;
 }
 
 std::vector<MappedKeyFrame> System::finishMapping() {
@@ -301,8 +269,8 @@ std::vector<MappedKeyFrame> System::finishMapping() {
   mapping_thread_->waitIdle();
   // A global bundle adjustment still solving: written back by the mapping thread like one that
   // ended between frames (takeMapped).
-  mapper_.waitForGlobalBundleAdjustment();
-  if (mapper_.globalBundleAdjustmentSolved()) mapping_thread_->push(MappingJob{});
+  mapping_->mapper().waitForGlobalBundleAdjustment();
+  if (mapping_->mapper().globalBundleAdjustmentSolved()) mapping_thread_->push(MappingJob{});
   mapping_thread_->waitIdle();
   return followed(mapping_thread_->takeFinished());
 }
@@ -318,7 +286,7 @@ std::vector<MappedKeyFrame> System::takeMapped() {
   if (!mapping_thread_) return {};
   // Idle, with a global bundle adjustment ended after the last keyframe: the mapping thread
   // writes it back now rather than at the next keyframe.
-  if (mapping_thread_->backlog() == 0 && mapper_.globalBundleAdjustmentSolved())
+  if (mapping_thread_->backlog() == 0 && mapping_->mapper().globalBundleAdjustmentSolved())
     mapping_thread_->push(MappingJob{});
   return followed(mapping_thread_->takeFinished());
 }
@@ -361,7 +329,9 @@ void System::reanchorTrackedFrames(const std::vector<long>& erased) {
   std::lock_guard<std::mutex> lock(anchors_mutex_);
   std::map<long, std::shared_ptr<const KeyFrame>> keyframes;
   AnchoredTrajectory::KeyFramePoses live;
-  for (const auto& kf : map_.keyFrames()) {
+  const std::set<long> gone(erased.begin(), erased.end());
+  for (const auto& kf : map().keyFrames()) {
+    if (gone.count(kf->id)) continue;  // kApart: the copy has not followed the update yet
     keyframes.emplace(kf->id, kf);
     live.emplace(kf->id, kf->T_cw);
   }
@@ -385,15 +355,15 @@ AnchoredTrajectory::KeyFramePoses System::anchorPoses() const {
 }
 
 Trajectory System::cameraTrajectory() const {
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  std::lock_guard<std::mutex> lock(map().updateMutex());
   std::lock_guard<std::mutex> anchors_lock(anchors_mutex_);
   return tracked_.trajectory(anchorPoses());
 }
 
 std::vector<KeyFramePacket> System::sparseKeyFramePackets() const {
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  std::lock_guard<std::mutex> lock(map().updateMutex());
   std::vector<KeyFramePacket> packets;
-  for (const auto& kf : map_.keyFrames())
+  for (const auto& kf : map().keyFrames())
     packets.push_back(makeSparseKeyFramePacket(*kf, config_.camera));
   return packets;
 }
@@ -408,20 +378,23 @@ MapFileSetup System::mapFileSetup() const {
   setup.camera.height = config_.camera.height;
   setup.orb_levels = config_.orb.num_levels;
   setup.orb_scale_factor = config_.orb.scale_factor;
-  setup.orb_vocabulary = mapper_.orbVocabulary();
-  setup.lbd_vocabulary = mapper_.lbdVocabulary();
+  if (!mapping_) return setup;  // kApart: no place database
+  setup.orb_vocabulary = mapping_->mapper().orbVocabulary();
+  setup.lbd_vocabulary = mapping_->mapper().lbdVocabulary();
   return setup;
 }
 
 void System::saveMap(const std::string& folder) const {
+  if (!mapping_) throw std::logic_error("System::saveMap: the mapping side (elsewhere) saves it");
   std::filesystem::create_directories(folder);
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  std::lock_guard<std::mutex> lock(mapping_->map().updateMutex());
   MapFileWriter::write((std::filesystem::path(folder) / kMapFileName).string(), mapFileSetup(),
-                       map_, mapper_.places());
+                       mapping_->map(), mapping_->mapper().places());
 }
 
 void System::loadMap(const std::string& folder, bool localisation_only) {
-  if (next_frame_id_ != 0 || map_.numKeyFrames() != 0)
+  if (!mapping_) throw std::logic_error("System::loadMap: not with the mapping side elsewhere");
+  if (next_frame_id_ != 0 || mapping_->map().numKeyFrames() != 0)
     throw std::logic_error("System::loadMap: a map is loaded before the first frame");
   // Read and checked whole before anything changes: a bad file leaves the system as it was.
   const std::string file = (std::filesystem::path(folder) / kMapFileName).string();
@@ -431,11 +404,12 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
   if (tracking_map_) tracker_copy = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
   long last_frame = -1;
   for (const auto& kf : loaded.keyframes) last_frame = std::max(last_frame, kf->frame_id);
-  map_.adopt(std::move(loaded.keyframes), std::move(loaded.points), std::move(loaded.lines));
+  mapping_->map().adopt(std::move(loaded.keyframes), std::move(loaded.points),
+                        std::move(loaded.lines));
   if (tracker_copy)
     tracking_map_->adopt(std::move(tracker_copy->keyframes), std::move(tracker_copy->points),
                          std::move(tracker_copy->lines));
-  mapper_.addLoadedKeyFrames(loaded.places);
+  mapping_->mapper().addLoadedKeyFrames(loaded.places);
   tracker_.startLost();
   tracker_.setLocalisationOnly(localisation_only);
   // Keyframes remember the frame they were made from; new frames must not repeat those ids.
@@ -443,9 +417,9 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
 }
 
 Trajectory System::keyFrameTrajectory() const {
-  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  std::lock_guard<std::mutex> lock(map().updateMutex());
   Trajectory trajectory;
-  for (const auto& kf : map_.keyFrames()) trajectory.push_back({kf->stamp, kf->T_wc()});
+  for (const auto& kf : map().keyFrames()) trajectory.push_back({kf->stamp, kf->T_wc()});
   return trajectory;
 }
 

@@ -8,21 +8,14 @@
 
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/grid_map_message.h"
+#include "wire_test_helpers.h"
 
 namespace ply_slam {
 namespace {
 
-template <typename M>
-M throughWire(const M& msg) {
-  namespace ser = ros::serialization;
-  std::vector<uint8_t> buffer(ser::serializationLength(msg));
-  ser::OStream out(buffer.data(), buffer.size());
-  ser::serialize(out, msg);
-  M back;
-  ser::IStream in(buffer.data(), buffer.size());
-  ser::deserialize(in, back);
-  return back;
-}
+using test::expectRejectedNaming;
+using test::sameImage;
+using test::throughWire;
 
 Eigen::Isometry3d somePose(double a) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -33,21 +26,6 @@ Eigen::Isometry3d somePose(double a) {
 
 void expectSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   EXPECT_LT((a.matrix() - b.matrix()).cwiseAbs().maxCoeff(), 1e-12);
-}
-
-// EXPECT that `convert` throws std::invalid_argument whose message names `field`.
-template <typename Convert>
-void expectRejectedNaming(Convert convert, const std::string& field) {
-  try {
-    convert();
-    ADD_FAILURE() << "accepted a bad " << field;
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
-}
-
-bool sameImage(const cv::Mat& a, const cv::Mat& b) {
-  return a.type() == b.type() && a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0;
 }
 
 KeyFramePacket fullPacket() {
@@ -195,29 +173,71 @@ TEST(RosConversions, CameraInfoIsCheckedLikeTheConfig) {
   expectRejectedNaming([&] { cameraFromInfo(info, PinholeCamera()); }, "width");
 }
 
+// Bit for bit: a copy of the map that tracks gets the mapping side's doubles (MapUpdate).
 TEST(RosConversions, MapUpdateRoundTrip) {
   MapUpdate u;
   u.stamp = 12.5;
-  u.keyframes = {{1, somePose(0.1)}, {4, somePose(-2.0)}};
-  u.points = {{11, {0.1, 0.2, 0.3}}};
-  u.lines = {{5, {1, 1, 1}, {2, 2, 2}}};
+  u.keyframes = {{1, somePose(0.1), -1}, {4, somePose(-2.0), 1}};
+  u.points = {{11, {0.1, 0.2, 0.3}, Eigen::Vector3d(1, 2, 3).normalized(), 1.0 / 3.0}};
+  u.lines = {{5, {1, 1, 1}, {2, 2, 2.0 / 7.0}, 0.1, 1e-9}};
   u.erased_keyframes = {2, 3};
   u.erased_points = {7, 8, 9};
   u.erased_lines = {4, 5};
   u.whole_map = true;
+  using C = MapJournal::Change;
+  u.journal.entries = {{C::kAddObservation, 4, 11, -1, 17, 0},
+                       {C::kRemoveObservation, 1, -1, -1, 3, 0},
+                       {C::kReplace, -1, 9, 11, 0, 0},
+                       {C::kErasePoint, -1, 8, -1, 0, 0},
+                       {C::kEraseKeyFrame, 2, -1, -1, 0, 3}};
+  u.world_corrections = {somePose(0.01), somePose(-0.3)};
   const MapUpdate v = fromMsg(throughWire(toMsg(u, "map")));
   EXPECT_EQ(v.stamp, u.stamp);
   ASSERT_EQ(v.keyframes.size(), 2u);
-  EXPECT_EQ(v.keyframes[1].id, 4);
-  expectSamePose(v.keyframes[1].T_wc(), u.keyframes[1].T_wc());
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(v.keyframes[k].id, u.keyframes[k].id);
+    EXPECT_TRUE(v.keyframes[k].T_cw.matrix() == u.keyframes[k].T_cw.matrix());
+    EXPECT_EQ(v.keyframes[k].parent, u.keyframes[k].parent);
+  }
   ASSERT_EQ(v.points.size(), 1u);
   EXPECT_EQ(v.points[0].position, u.points[0].position);
+  EXPECT_EQ(v.points[0].normal, u.points[0].normal);
+  EXPECT_EQ(v.points[0].position_weight, u.points[0].position_weight);
   ASSERT_EQ(v.lines.size(), 1u);
   EXPECT_EQ(v.lines[0].start, u.lines[0].start);
+  EXPECT_EQ(v.lines[0].end, u.lines[0].end);
+  EXPECT_EQ(v.lines[0].start_weight, u.lines[0].start_weight);
+  EXPECT_EQ(v.lines[0].end_weight, u.lines[0].end_weight);
   EXPECT_EQ(v.erased_keyframes, (std::vector<long>{2, 3}));
   EXPECT_EQ(v.erased_points, (std::vector<long>{7, 8, 9}));
   EXPECT_EQ(v.erased_lines, (std::vector<long>{4, 5}));
   EXPECT_TRUE(v.whole_map);
+  ASSERT_EQ(v.journal.entries.size(), u.journal.entries.size());
+  for (size_t i = 0; i < u.journal.entries.size(); ++i) {
+    const auto &a = v.journal.entries[i], &b = u.journal.entries[i];
+    EXPECT_TRUE(a.change == b.change && a.keyframe == b.keyframe && a.point == b.point &&
+                a.winner == b.winner && a.index == b.index &&
+                a.min_point_observers == b.min_point_observers)
+        << "journal entry " << i;
+  }
+  ASSERT_EQ(v.world_corrections.size(), 2u);
+  for (size_t i = 0; i < 2; ++i)
+    EXPECT_TRUE(v.world_corrections[i].matrix() == u.world_corrections[i].matrix());
+}
+
+TEST(RosConversions, MapUpdateWithABadPoseOrChangeIsRejected) {
+  MapUpdate u;
+  u.keyframes = {{1, somePose(0.1), -1}};
+  MapUpdateMsg msg = toMsg(u, "map");
+  msg.keyframes[0].T_cw.matrix[0] = 2.0;  // a scaled rotation
+  expectRejectedNaming([&] { fromMsg(msg); }, "rotation");
+  msg = toMsg(u, "map");
+  msg.keyframes[0].T_cw.matrix[3] = std::nan("");
+  expectRejectedNaming([&] { fromMsg(msg); }, "not finite");
+  msg = toMsg(u, "map");
+  msg.journal.resize(1);
+  msg.journal[0].change = 9;
+  expectRejectedNaming([&] { fromMsg(msg); }, "unknown change");
 }
 
 // The grid message: cells as stored, and info.origin the pose of cell (0, 0)'s corner in the

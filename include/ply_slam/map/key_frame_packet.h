@@ -38,6 +38,13 @@ struct PacketInstance {
   bool dynamic = false;  // judged moving in this frame: its pixels are left out of the maps
 };
 
+// A keyframe's segmentation as the maps take it: one label image for every instance.
+struct KeyFrameSegmentation {
+  cv::Mat label_image;  // 16UC1 instance id per pixel, 0 = none; empty when not segmented
+  std::vector<PacketInstance> instances;
+  cv::Mat dynamic_mask;  // 8UC1, non-zero: pixels of moving things (dilated); empty = none
+};
+
 // Tracker -> mapper (DESIGN.md, "One library, two transports"): everything the mapping side
 // needs about a new keyframe. Plain data, mirrored 1:1 by msg/KeyFrame.msg.
 struct KeyFramePacket {

@@ -14,11 +14,18 @@ namespace ply_slam {
 // that missed the keyframe can still be given).
 KeyFramePacket makeSparseKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera);
 
+// The instances of an image of `size` as one label image, larger ones drawn first so that a
+// smaller one in front keeps its pixels (those in `dynamic_ids` marked dynamic), and the
+// dynamic mask (may be empty; shared, not copied).
+KeyFrameSegmentation segmentationOf(const std::vector<Instance>& instances,
+                                    const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask,
+                                    const cv::Size& size);
+
 // Packs a new keyframe for the mapping side: pose, features, landmarks, the images and the
-// segmentation (instances in `dynamic_ids` are marked dynamic; `dynamic_mask` may be empty).
-// The packet shares the images and the mask: pass copies nobody else changes (MappingJob's).
+// segmentation. The packet shares the images and the segmentation's images: pass copies
+// nobody else changes (MappingJob's).
 KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
-                                  const RgbdImages& images, const std::vector<Instance>& instances,
-                                  const std::set<int>& dynamic_ids, const cv::Mat& dynamic_mask);
+                                  const RgbdImages& images,
+                                  const KeyFrameSegmentation& segmentation);
 
 }  // namespace ply_slam

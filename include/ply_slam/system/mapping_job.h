@@ -2,7 +2,6 @@
 
 #include <memory>
 #include <opencv2/core.hpp>
-#include <set>
 #include <vector>
 
 #include "ply_slam/io/tum_sequence.h"
@@ -10,7 +9,6 @@
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/tracker_report.h"
 #include "ply_slam/mapping/loop_corrector.h"
-#include "ply_slam/semantic/instance.h"
 
 namespace ply_slam {
 
@@ -19,15 +17,16 @@ namespace ply_slam {
 struct MappingJob {
   std::shared_ptr<KeyFrame> keyframe;
   RgbdImages images;
-  std::vector<Instance> instances;  // as judged
-  std::set<int> dynamic_ids;
-  cv::Mat dynamic_mask;
+  KeyFrameSegmentation segmentation;  // the instances as judged (segmentationOf)
   // Split modes: what the tracker did to its copy of the map since the keyframe before, and
   // `keyframe` is the mapping side's own (KeyFrame::unlinkedCopy).
   TrackerReport report;
   // Split modes: how many updates the tracker's copy had followed when the report began: the
   // merges of later ones it may not know (LandmarkCreator::replay's `merged`).
   long followed_updates = 0;
+  // The tracker's reference keyframe when it handed the job over: culling leaves it (the
+  // mapping side of another process has no other way to know it).
+  long reference_keyframe = -1;
 
   // The same job owning copies of its images: the mapping side may run later on another
   // thread while the caller reuses its buffers, and the keyframe packet keeps these copies.
@@ -35,8 +34,8 @@ struct MappingJob {
     MappingJob job = *this;
     job.images.rgb = images.rgb.clone();
     job.images.depth = images.depth.clone();
-    for (auto& instance : job.instances) instance.mask = instance.mask.clone();
-    job.dynamic_mask = dynamic_mask.clone();
+    job.segmentation.label_image = segmentation.label_image.clone();
+    job.segmentation.dynamic_mask = segmentation.dynamic_mask.clone();
     return job;
   }
 };

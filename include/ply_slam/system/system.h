@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <deque>
+#include <functional>
 #include <future>
 #include <map>
 #include <memory>
@@ -21,10 +22,10 @@
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/map/map_file_contents.h"
-#include "ply_slam/mapping/mapper.h"
 #include "ply_slam/semantic/instance.h"
 #include "ply_slam/semantic/instance_memory.h"
 #include "ply_slam/system/mapping_job.h"
+#include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/mapping_thread.h"
 #include "ply_slam/tracking/tracker.h"
 
@@ -84,13 +85,25 @@ class InvalidFrame : public std::invalid_argument {
 // (TrackerReport), the tracker's copy follows the mapping side's updates (MapUpdate with its
 // journal); runs repeat kInline's bit for bit. kSplitOwnThread: so, with the mapping side on a
 // thread of its own; the tracker's copy follows each update at the first frame after it.
-enum class MappingMode { kInline, kOwnThread, kSplit, kSplitOwnThread };
+// kApart: the tracking side alone, as tracking_node runs it beside a mapping_node: each new
+// keyframe's job goes to the job sink (setJobSink), the copy follows the updates given to
+// followMapUpdate, nothing is mapped here and no place database is kept (no relocalisation
+// through place recognition, no map to save or load).
+enum class MappingMode { kInline, kOwnThread, kSplit, kSplitOwnThread, kApart };
 
 // The whole pipeline in one process, frame by frame: the tracking side in process(), the
 // mapping side as MappingMode says.
 class System {
  public:
   explicit System(const SystemConfig& config, MappingMode mode = MappingMode::kInline);
+
+  // kApart: where each new keyframe's job goes (called from process(), with the tracker's map
+  // locked: queue it, do not call back into the system).
+  using JobSink = std::function<void(MappingJob job)>;
+  void setJobSink(JobSink sink) { job_sink_ = std::move(sink); }
+  // kApart: what the mapping side changed, its updates in the order it made them, done to the
+  // tracker's copy; between two frames, on the thread that calls process().
+  void followMapUpdate(const MapUpdate& update);
 
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
   // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
@@ -115,27 +128,30 @@ class System {
   // Every keyframe of the map as it is now, without images (for a mapper that restarted).
   std::vector<KeyFramePacket> sparseKeyFramePackets() const;
   // Loop closure's counts; null without loop.enabled.
-  const LoopClosureCounts* loopCounts() const { return mapper_.loopCounts(); }
-  GlobalBundleAdjustmentCounts globalBundleAdjustmentCounts() const {
-    return mapper_.globalBundleAdjustmentCounts();
+  const LoopClosureCounts* loopCounts() const {
+    return mapping_ ? mapping_->mapper().loopCounts() : nullptr;
   }
-  // The mapping side's map, and the one the tracker tracks in (its own copy in the split
-  // modes; both still while the mapping side works on another thread only).
-  const Map& map() const { return map_; }
-  const Map& trackerMap() const { return tracking_map_ ? *tracking_map_ : map_; }
+  GlobalBundleAdjustmentCounts globalBundleAdjustmentCounts() const {
+    return mapping_ ? mapping_->mapper().globalBundleAdjustmentCounts()
+                    : GlobalBundleAdjustmentCounts{};
+  }
+  // The mapping side's map (kApart: the tracker's copy), and the one the tracker tracks in (its
+  // own copy in the split modes; both still while the mapping side works on another thread only).
+  const Map& map() const { return mapping_ ? mapping_->map() : *tracking_map_; }
+  const Map& trackerMap() const { return tracking_map_ ? *tracking_map_ : mapping_->map(); }
 
   // The map file a saved map is in, inside the folder saveMap and loadMap take.
   static constexpr const char* kMapFileName = "map.plymap";
   // Writes the map (keyframes with features, poses, landmarks, covisibility, spanning tree,
   // place-recognition data) into folder/map.plymap (MapFileWriter); the folder is created.
-  // Throws std::runtime_error naming the file.
+  // Throws std::runtime_error naming the file; std::logic_error with kApart.
   void saveMap(const std::string& folder) const;
   // Before the first frame: takes the map saved in `folder`. Tracking starts lost and
   // relocalises in it (place-recognition candidates and PnP), so no pose is reported before;
   // frame and keyframe ids continue after the map's. `localisation_only`: no keyframes nor
   // landmarks are added; false: the map is extended. Throws std::runtime_error naming the file
   // and the fault (missing, truncated, corrupted, another version, camera, pyramid or
-  // vocabulary), the system unchanged; std::logic_error after the first frame.
+  // vocabulary), the system unchanged; std::logic_error after the first frame or with kApart.
   void loadMap(const std::string& folder, bool localisation_only = true);
   // The camera, pyramid and vocabularies a map file made by this system records.
   MapFileSetup mapFileSetup() const;
@@ -168,14 +184,11 @@ class System {
   void rejectDynamic(FrameFeatures& features, double stamp, const std::vector<Instance>& instances,
                      FrameResult& result);
   static void markInliers(const Frame& frame, std::vector<FeatureMark>& marks);
-  // The mapping side for one keyframe: map upkeep, the packet, then the loop query (which needs
-  // the packet's images). Runs on the mapping thread or in line; takes the map's lock itself.
-  MappedKeyFrame mapKeyFrame(const MappingJob& job);
   // The frame's pose, hung from the tracker's reference keyframe (with the map's lock held).
   void rememberTracked(const FrameResult& result);
-  // Split modes, mapping side: the job's report done to its map with the job's keyframe (an
-  // unlinked copy of the tracker's); anchors on the tracker's keyframes move to the map's.
-  void followTracker(const MappingJob& job);
+  // Split modes, after the mapping side did a job's report (its map's lock held): anchors on the
+  // tracker's keyframes move to the map's.
+  void anchorOnMappedKeyFrames();
   // Split modes, tracking side (its copy locked): what the mapping side changed, done to the
   // copy; after a whole-map update the keyframes the mapping side has not seen yet move as the
   // one before them moved, and the tracker as the mapping side told.
@@ -183,17 +196,10 @@ class System {
   // followMapper's whole-map update (after a loop or a global BA): keyframes the mapping side
   // has not seen move as the one before them moved (carryAlong).
   void followWholeMap(const MapUpdate& update);
-  // Mapping side, a keyframe's map upkeep, its packet, then the loop query (which needs the
-  // packet's images), into `out`.
-  KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // The mapping thread's results, followed by the tracker's copy (split modes).
   std::vector<MappedKeyFrame> followed(std::vector<MappedKeyFrame> mapped);
-  // Mapping side: what it did, for the copies of the map (`mapped`: none for a global bundle
-  // adjustment written back alone; the journal in the split modes).
-  MapUpdate updateOf(const std::optional<KeyFrameInsertionStats>& mapped, bool whole_map,
-                     MapJournal journal);
   // The map the tracker tracks in: its own copy in the split modes, else the one map.
-  Map& trackingMap() { return tracking_map_ ? *tracking_map_ : map_; }
+  Map& trackingMap() { return tracking_map_ ? *tracking_map_ : mapping_->map(); }
   // Frames anchored on keyframes the mapping side erased move to live ones, where they are.
   void reanchorTrackedFrames(const std::vector<long>& erased);
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
@@ -204,26 +210,20 @@ class System {
   std::unique_ptr<LineFitter> line_fitter_;
   DynamicRejector rejector_;
   InstanceMemory memory_;
-  Map map_;  // the mapping side's
+  // Before the tracker, which sends it what it measured (unless in a copy); null with kApart.
+  std::unique_ptr<MappingSide> mapping_;
   // Split modes (null otherwise): the tracker's copy of the map, the creator writing into it
   // what the tracker measured, and its report of that since the last keyframe (under the
   // copy's lock).
   std::unique_ptr<Map> tracking_map_;
   std::unique_ptr<LandmarkCreator> tracking_creator_;
   TrackerReport report_;
-  // Split modes: how the mapping side moved the world while mapping a keyframe, in order, for
-  // its update (the mapping side's thread).
-  std::vector<Eigen::Isometry3d> corrections_;
-  // Split modes: the updates the mapping side made and the tracker's copy followed (each side's
-  // own count), the copy's count when the last keyframe went, and the points the mapping side
-  // merged away that reports may still name, with the update that merged each.
-  long updates_made_ = 0, updates_followed_ = 0, followed_at_last_keyframe_ = 0;
-  LandmarkCreator::MergedPoints merged_;
-  std::deque<std::pair<long, long>> merge_log_;  // (update, loser id), oldest first
+  // Split modes: the updates the tracker's copy followed, and their count when the last
+  // keyframe went.
+  long updates_followed_ = 0, followed_at_last_keyframe_ = 0;
   // The tracker's reference keyframe after the last frame (-1: none), for keyframe culling on
   // whichever thread maps.
   std::atomic<long> reference_id_{-1};
-  Mapper mapper_;  // before the tracker: it receives what the tracker measured
   Tracker tracker_;
   long next_frame_id_ = 0;
   double last_stamp_ = -1.0;
@@ -235,6 +235,7 @@ class System {
   AnchoredTrajectory tracked_;
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
   std::set<long> unmapped_anchors_;
+  JobSink job_sink_;  // kApart
   // Last: joined before anything it uses goes. Null with kInline.
   std::unique_ptr<MappingThread> mapping_thread_;
 };

@@ -1,0 +1,88 @@
+#include "ply_slam/system/mapping_side.h"
+
+#include <set>
+
+#include "ply_slam/common/stopwatch.h"
+#include "ply_slam/system/key_frame_packet_builder.h"
+
+namespace ply_slam {
+
+MappingSide::MappingSide(const SystemConfig& config, bool follows_reports, bool wait_for_global_ba)
+    : camera_(config.camera),
+      follows_reports_(follows_reports),
+      mapper_(config.camera, mapperOptions(config), map_, wait_for_global_ba) {
+  // Whoever tracks in a copy moves along when it follows the update that says so.
+  if (follows_reports_)
+    mapper_.setCorrectionListener(
+        [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
+}
+
+MappedKeyFrame MappingSide::mapKeyFrame(const MappingJob& job) {
+  Stopwatch mapping;
+  MappedKeyFrame out;
+  if (follows_reports_ && job.keyframe) followTracker(job);
+  // A copy following by reports follows by what this does to the map.
+  MapJournal journal;
+  if (follows_reports_) map_.journalTo(&journal);
+  std::optional<KeyFrameInsertionStats> mapped;
+  if (job.keyframe) {
+    mapped = insertKeyFrame(job, out);
+  } else {  // no keyframe: a global bundle adjustment that ended to write back
+    mapper_.applySolvedGlobalBundleAdjustment();
+  }
+  if (follows_reports_) map_.journalTo(nullptr);
+  const bool whole_map = !mapped || out.loop_correction || mapped->global_ba_applied;
+  out.map_update =
+      std::make_shared<const MapUpdate>(updateOf(mapped, whole_map, std::move(journal)));
+  out.ms = mapping.elapsedMs();
+  return out;
+}
+
+void MappingSide::followTracker(const MappingJob& job) {
+  // Merges the tracker's copy had followed before the report began are no longer named in it.
+  while (!merge_log_.empty() && merge_log_.front().first <= job.followed_updates) {
+    merged_.erase(merge_log_.front().second);
+    merge_log_.pop_front();
+  }
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  mapper_.replay(job.report, job.keyframe, merged_);
+  if (hooks_.replayed) hooks_.replayed();
+}
+
+KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {
+  KeyFrame& keyframe = *job.keyframe;
+  const Mapper::KeepKeyFrames keep_reference = [&job] {
+    return std::set<long>{job.reference_keyframe};
+  };
+  KeyFrameInsertionStats mapped =
+      mapper_.insertKeyFrame(job.keyframe, hooks_.keep ? hooks_.keep : keep_reference);
+  out.culled_points = mapped.culled_points;
+  {
+    std::lock_guard<std::mutex> lock(map_.updateMutex());
+    if (hooks_.culled && !mapped.culled_keyframes.empty()) hooks_.culled(mapped.culled_keyframes);
+    out.packet = std::make_shared<const KeyFramePacket>(
+        makeKeyFramePacket(keyframe, camera_, job.images, job.segmentation));
+  }
+  if (auto correction = mapper_.closeLoop(keyframe, *out.packet))
+    out.loop_correction = std::make_shared<const LoopCorrection>(std::move(*correction));
+  return mapped;
+}
+
+MapUpdate MappingSide::updateOf(const std::optional<KeyFrameInsertionStats>& mapped, bool whole_map,
+                                MapJournal journal) {
+  MapUpdate update = whole_map ? mapper_.wholeMap() : mapped->adjusted;
+  if (mapped) update.erased_keyframes = mapped->culled_keyframes;
+  update.erased_points = map_.takeRemovedPoints();
+  update.erased_lines = map_.takeRemovedLines();
+  update.journal = std::move(journal);
+  update.world_corrections = std::exchange(corrections_, {});
+  ++updates_made_;
+  for (const auto& e : update.journal.entries)
+    if (e.change == MapJournal::Change::kReplace) {
+      merged_[e.point] = e.winner;
+      merge_log_.emplace_back(updates_made_, e.point);
+    }
+  return update;
+}
+
+}  // namespace ply_slam
