@@ -126,9 +126,11 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   result.timing.tracking_ms = tracking.elapsedMs();
   result.timing.total_ms = total.elapsedMs();
   markInliers(frame, result.features);
+  // Before the hand-over: mapping the frame's own keyframe in line (local BA, a loop it closes)
+  // then moves the frame with it.
+  rememberTracked(result);
   if (result.tracking.new_keyframe) handOverKeyFrame(images, lock, result);
   for (const auto& mapped : result.mapped) result.timing.mapping_ms += mapped.ms;
-  rememberTracked(result);
   return result;
 }
 

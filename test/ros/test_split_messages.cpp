@@ -331,6 +331,20 @@ TEST(SplitMessages, ATrackerAndAMappingSideApartRunAsTheSplitSystem) {
   test::expectSameTrajectory(apart.keyFrameTrajectory(), split.keyFrameTrajectory());
   test::expectSameMap(mapping.map(), split.map(), "the mapping sides after 120 frames");
   test::expectSameMap(apart.trackerMap(), split.trackerMap(), "the trackers' copies");
+  // The tracked frames hang from the keyframes as tracked, bit for bit, but for those that hung
+  // from a keyframe the mapping side culled: the split system moves them to a live keyframe as
+  // it culls (after local BA), the tracker apart as it follows (its copy before local BA), so
+  // they differ by what local BA moved the two keyframes (measured: 0.64 mm, 5 frames of 120).
+  const Trajectory ta = apart.cameraTrajectory(), ts = split.cameraTrajectory();
+  ASSERT_EQ(ta.size(), ts.size());
+  size_t same = 0;
+  double worst = 0.0;
+  for (size_t i = 0; i < ta.size(); ++i) {
+    same += ta[i].T_wc.matrix() == ts[i].T_wc.matrix();
+    worst = std::max(worst, (ta[i].T_wc.translation() - ts[i].T_wc.translation()).norm());
+  }
+  EXPECT_GE(same, ta.size() - 10 * culled);
+  EXPECT_LT(worst, 2e-3);
 }
 
 TEST(SplitMessages, ATrackerApartNeedsAJobSinkAndHasNoMapToSave) {

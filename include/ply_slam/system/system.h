@@ -184,7 +184,8 @@ class System {
   void rejectDynamic(FrameFeatures& features, double stamp, const std::vector<Instance>& instances,
                      FrameResult& result);
   static void markInliers(const Frame& frame, std::vector<FeatureMark>& marks);
-  // The frame's pose, hung from the tracker's reference keyframe (with the map's lock held).
+  // The frame's pose as tracked, hung from the tracker's reference keyframe as it is then (with
+  // the map's lock held).
   void rememberTracked(const FrameResult& result);
   // Split modes, after the mapping side did a job's report (its map's lock held): anchors on the
   // tracker's keyframes move to the map's.
