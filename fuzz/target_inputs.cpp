@@ -128,8 +128,8 @@ void mappingJobMsg(const uint8_t* data, size_t size) {
   if (!deserialize(data, size, msg)) return;
   static const std::vector<double> scales{1.0, 1.2, 1.44, 1.728};  // a pyramid of 4 levels
   try {
-    ply_slam::fromMsg(msg, &scales);
-  } catch (const std::invalid_argument&) {  // documented: an inconsistent message
+    ply_slam::fromMsg(msg, {&scales, cv::Size(16, 12)});  // the seeds' size (fuzz_seeds.py)
+  } catch (const std::invalid_argument&) {                // documented: an inconsistent message
   }
 }
 

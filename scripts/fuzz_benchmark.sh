@@ -95,7 +95,10 @@ for target in "${TARGETS[@]}"; do
   done
   found=$(( $(ls "$findings" | wc -l) - before ))
   [ "$found" -gt 0 ] && STATUS=1
-  names=$(ls -t "$findings" | head -n "$found" | tr '\n' ' ')
+  # (head -n 0 would close the pipe on ls: with pipefail a target without new findings but with
+  # old ones stopped the script)
+  names=""
+  [ "$found" -gt 0 ] && names=$(ls -t "$findings" | head -n "$found" | tr '\n' ' ')
   printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$target" "$SECONDS_PER_TARGET" "$executions" \
     "$((executions / SECONDS_PER_TARGET))" "$(ls "$corpus" | wc -l)" "$cov" \
     "$([ "$found" -gt 0 ] && echo "${found}: ${names}" || echo 0)" | tee -a "$ROWS"

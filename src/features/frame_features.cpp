@@ -37,6 +37,14 @@ float lookupDepth(const cv::Mat& depth_m, const PinholeCamera& camera, const cv:
   return camera.validDepth(z) ? z : 0.f;
 }
 
+// The grid cell of pixel coordinate x, -1 below the grid (or not a number) and `cells` beyond it:
+// a far-off coordinate (a message's, a projection's) must not overflow the int.
+int cellOf(double x, int cell_size, int cells) {
+  const double cell = std::floor(x / cell_size);
+  if (!(cell >= 0.0)) return -1;
+  return cell >= cells ? cells : static_cast<int>(cell);
+}
+
 }  // namespace
 
 FrameFeatures FrameFeatures::extract(const cv::Mat& gray, const cv::Mat& depth_m,
@@ -116,8 +124,8 @@ void FrameFeatures::buildGrid() {
   grid_rows_ = std::max(1, (height + kCellSize - 1) / kCellSize);
   grid_.assign(grid_cols_ * grid_rows_, {});
   for (size_t i = 0; i < undistorted.size(); ++i) {
-    const int c = static_cast<int>(std::floor(undistorted[i].x() / kCellSize));
-    const int r = static_cast<int>(std::floor(undistorted[i].y() / kCellSize));
+    const int c = cellOf(undistorted[i].x(), kCellSize, grid_cols_);
+    const int r = cellOf(undistorted[i].y(), kCellSize, grid_rows_);
     if (c < 0 || r < 0 || c >= grid_cols_ || r >= grid_rows_) continue;  // undistorted outside
     grid_[r * grid_cols_ + c].push_back(i);
   }
@@ -126,10 +134,10 @@ void FrameFeatures::buildGrid() {
 std::vector<size_t> FrameFeatures::featuresInArea(double u, double v, double radius, int min_level,
                                                   int max_level) const {
   std::vector<size_t> out;
-  const int c0 = std::max(0, static_cast<int>(std::floor((u - radius) / kCellSize)));
-  const int c1 = std::min(grid_cols_ - 1, static_cast<int>(std::floor((u + radius) / kCellSize)));
-  const int r0 = std::max(0, static_cast<int>(std::floor((v - radius) / kCellSize)));
-  const int r1 = std::min(grid_rows_ - 1, static_cast<int>(std::floor((v + radius) / kCellSize)));
+  const int c0 = std::max(0, cellOf(u - radius, kCellSize, grid_cols_));
+  const int c1 = std::min(grid_cols_ - 1, cellOf(u + radius, kCellSize, grid_cols_));
+  const int r0 = std::max(0, cellOf(v - radius, kCellSize, grid_rows_));
+  const int r1 = std::min(grid_rows_ - 1, cellOf(v + radius, kCellSize, grid_rows_));
   const double r2 = radius * radius;
   for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {

@@ -1,9 +1,16 @@
 #include "ply_slam/ros/mapping_back_end.h"
 
+#include "ply_slam/features/orb_extractor.h"
+
 namespace ply_slam {
 
-MappingBackEnd MappingBackEnd::fromConfig(const SystemConfig& config) {
+MappingBackEnd MappingBackEnd::fromConfig(const SystemConfig& config, bool map_keyframes) {
   MappingBackEnd back_end;
+  if (map_keyframes) {
+    // On its own thread, as tracking_node's thread: a global BA is solved beside the keyframes.
+    back_end.mapping = std::make_unique<MappingSide>(config, true, false);
+    back_end.orb_scales = OrbExtractor(config.orb).scales();
+  }
   if (!config.dense.enabled) return back_end;
   back_end.dense = std::make_unique<DenseMappingWorker>(config.dense);
   if (!config.grid.enabled) return back_end;

@@ -22,6 +22,7 @@
 #include "ply_slam/ros/dense_map_messages.h"
 #include "ply_slam/ros/grid_map_message.h"
 #include "ply_slam/ros/sparse_map_messages.h"
+#include "ply_slam/ros/split_messages.h"
 #include "ply_slam/system/system.h"
 
 namespace ply_slam {
@@ -31,6 +32,8 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
     : nh_(nh),
       pnh_(pnh),
       options_(std::move(options)),
+      mapping_(std::move(back_end.mapping)),
+      orb_scales_(std::move(back_end.orb_scales)),
       dense_(std::move(back_end.dense)),
       grid_builder_(std::move(back_end.grid_builder)),
       tf_listener_(tf_buffer_) {
@@ -63,29 +66,44 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
                                   &MappingNode::publishGrid, this);
   }
 
-  keyframe_sub_ = nh_.subscribe(options_.keyframe_topic, 100, &MappingNode::onKeyFrame, this);
   pose_sub_ = nh_.subscribe(options_.pose_topic, 100, &MappingNode::onPose, this);
-  update_sub_ = nh_.subscribe(options_.map_update_topic, 100, &MappingNode::onMapUpdate, this);
-  snapshot_sub_ = nh_.subscribe(options_.map_snapshot_topic, 2, &MappingNode::onMapSnapshot, this);
-  resend_client_ = nh_.serviceClient<std_srvs::Trigger>(options_.resend_service);
-  // Started after the tracker (a restart): what went by is not known from a gap until the next
-  // keyframe, so the map is asked for once at the start (an empty one from a fresh tracker).
-  startup_timer_ = nh_.createWallTimer(
-      ros::WallDuration(1.0),
-      [this](const ros::WallTimerEvent&) {
-        if (resend_client_.exists()) onMissed(0, "messages before the start");
-      },
-      true);
+  if (mapping_) {
+    mapping_thread_ = std::make_unique<MappingThread>(
+        [this](const MappingJob& job) { return mapping_->mapKeyFrame(job); });
+    update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 100);
+    job_sub_ = nh_.subscribe(options_.mapping_job_topic, 100, &MappingNode::onMappingJob, this);
+    // What the mapping thread finished goes out within a hundredth of a second.
+    mapped_timer_ = nh_.createWallTimer(ros::WallDuration(0.01),
+                                        [this](const ros::WallTimerEvent&) { takeMapped(); });
+  } else {
+    keyframe_sub_ = nh_.subscribe(options_.keyframe_topic, 100, &MappingNode::onKeyFrame, this);
+    update_sub_ = nh_.subscribe(options_.map_update_topic, 100, &MappingNode::onMapUpdate, this);
+    snapshot_sub_ =
+        nh_.subscribe(options_.map_snapshot_topic, 2, &MappingNode::onMapSnapshot, this);
+    resend_client_ = nh_.serviceClient<std_srvs::Trigger>(options_.resend_service);
+    // Started after the tracker (a restart): what went by is not known from a gap until the
+    // next keyframe, so the map is asked for once at the start (an empty one from a fresh
+    // tracker).
+    startup_timer_ = nh_.createWallTimer(
+        ros::WallDuration(1.0),
+        [this](const ros::WallTimerEvent&) {
+          if (resend_client_.exists()) onMissed(0, "messages before the start");
+        },
+        true);
+  }
   save_trajectory_srv_ =
       pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
   save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
   tracker_save_map_client_ = nh_.serviceClient<SaveToPath>(options_.tracker_save_map_service);
-  ROS_INFO_STREAM("mapping_node: keyframes from "
-                  << keyframe_sub_.getTopic() << ", poses from " << pose_sub_.getTopic()
-                  << ", map updates from " << update_sub_.getTopic() << "; tf "
-                  << (options_.odom_frame.empty()
-                          ? options_.world_frame + " -> " + options_.camera_frame
-                          : options_.map_frame + " -> " + options_.odom_frame));
+  ROS_INFO_STREAM("mapping_node: " << (mapping_
+                                           ? "maps the jobs from " + job_sub_.getTopic() +
+                                                 ", updates to " + update_pub_.getTopic()
+                                           : "keyframes from " + keyframe_sub_.getTopic() +
+                                                 ", map updates from " + update_sub_.getTopic())
+                                   << ", poses from " << pose_sub_.getTopic() << "; tf "
+                                   << (options_.odom_frame.empty()
+                                           ? options_.world_frame + " -> " + options_.camera_frame
+                                           : options_.map_frame + " -> " + options_.odom_frame));
 }
 
 void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
@@ -98,28 +116,30 @@ void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
     bad_input_.report("keyframe", e.what());
     return;
   }
-  // The dense maps take the packet's images (the store keeps none); push only queues.
-  const auto shared = std::make_shared<const KeyFramePacket>(std::move(packet));
   uint64_t missed = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     missed = keyframe_sequence_.receive(msg->sequence);
-    if (!store_.insert(*shared)) {
-      bad_input_.report("keyframe", "keyframe " + std::to_string(shared->id) + " is out of date");
-      return;
-    }
-    if (dense_) dense_keyframes_.insert(shared->id);
   }
-  if (dense_) dense_->push(shared);
+  keepKeyFrame(std::make_shared<const KeyFramePacket>(std::move(packet)));
   if (missed > 0) onMissed(missed, "keyframe messages");
   publishMap(msg->header.stamp);
   noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
 }
 
-// What the tracking process's mapping side changed: frames hanging from erased keyframes move to
-// live ones, then the store takes the new poses and landmarks. The dense maps drop the erased
-// keyframes and re-place theirs only after a loop closure (a rebuild of the octree is heavy; local
-// BA moves keyframes by millimetres).
+// The dense maps take the packet's images (the store keeps none); push only queues.
+void MappingNode::keepKeyFrame(const std::shared_ptr<const KeyFramePacket>& packet) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!store_.insert(*packet)) {
+      bad_input_.report("keyframe", "keyframe " + std::to_string(packet->id) + " is out of date");
+      return;
+    }
+    if (dense_) dense_keyframes_.insert(packet->id);
+  }
+  if (dense_) dense_->push(packet);
+}
+
 void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   const Stopwatch watch;
   const ThreadCpuStopwatch cpu;
@@ -134,6 +154,20 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     missed = update_sequence_.receive(msg->sequence);
+  }
+  keepMapUpdate(update);
+  if (missed > 0) onMissed(missed, "map updates");
+  publishMap(msg->header.stamp);
+  noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
+}
+
+// What the mapping side changed: frames hanging from erased keyframes move to live ones, then the
+// store takes the new poses and landmarks. The dense maps drop the erased keyframes and re-place
+// theirs only after a loop closure (a rebuild of the octree is heavy; local BA moves keyframes by
+// millimetres).
+void MappingNode::keepMapUpdate(const MapUpdate& update) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
     AnchoredTrajectory::KeyFramePoses live;
     if (!update.erased_keyframes.empty()) live = anchorPoses();
     for (long id : update.erased_keyframes) live.erase(id);
@@ -147,9 +181,50 @@ void MappingNode::onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     loop_updates_ += update.whole_map;
   }
   if (dense_) dense_->follow(update);
-  if (missed > 0) onMissed(missed, "map updates");
-  publishMap(msg->header.stamp);
+}
+
+void MappingNode::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) {
+  const Stopwatch watch;
+  const ThreadCpuStopwatch cpu;
+  MappingJob job;
+  try {
+    job = fromMsg(*msg, JobReceiver{&orb_scales_, cv::Size(options_.config.camera.width,
+                                                           options_.config.camera.height)});
+  } catch (const std::exception& e) {
+    bad_input_.report("mapping_job", e.what());
+    return;
+  }
+  // A lost job is lost for good: the keyframe and the landmarks it made are not in this map, and
+  // later reports naming them leave them out.
+  if (const uint64_t missed = job_sequence_.receive(msg->sequence))
+    ROS_ERROR_STREAM("mapping_node: missed " << missed << " keyframe jobs from the tracker; the "
+                                             << "map goes on without their keyframes");
+  mapping_thread_->push(std::move(job));
   noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
+}
+
+// In the order made: each update to the tracker (whose copy follows them in turn), then into the
+// store and the dense maps.
+void MappingNode::takeMapped() {
+  // Idle, with a global bundle adjustment ended after the last keyframe: written back now.
+  if (mapping_thread_->backlog() == 0 && mapping_->mapper().globalBundleAdjustmentSolved())
+    mapping_thread_->push(MappingJob{});
+  std::vector<MappedKeyFrame> mapped;
+  try {
+    mapped = mapping_thread_->takeFinished();
+  } catch (const std::exception& e) {
+    bad_input_.report("mapping", e.what());
+    return;
+  }
+  for (const MappedKeyFrame& m : mapped) {
+    MapUpdateMsg update = toMsg(*m.map_update, options_.world_frame);
+    update.sequence = updates_sent_++;
+    update_pub_.publish(update);
+    if (m.packet) keepKeyFrame(m.packet);
+    keepMapUpdate(*m.map_update);
+    loops_closed_ += m.loop_correction != nullptr;
+  }
+  if (!mapped.empty()) publishMap(ros::Time::now());
 }
 
 void MappingNode::onMissed(uint64_t missed, const std::string& what) {
@@ -342,12 +417,14 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
     writeTumTrajectory(request.path, cameraTrajectory());
     const std::string partial = partialReason(false);
     response.success = partial.empty();
-    response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
-                       std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
-                       " (" + std::to_string(map_updates_) + " map updates applied, " +
-                       std::to_string(loop_updates_) + " after a loop closure; longest keyframe " +
-                       "or map-update callback " + std::to_string(longest_callback_ms_) + " ms, " +
-                       std::to_string(longest_callback_cpu_ms_) + " ms of CPU)";
+    response.message =
+        (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
+        std::to_string(camera_trajectory_.size()) + " poses to " + request.path + " (" +
+        std::to_string(map_updates_) + " map updates applied, " + std::to_string(loop_updates_) +
+        " after a loop closure" +
+        (mapping_ ? ", " + std::to_string(loops_closed_) + " loops closed here" : std::string()) +
+        "; longest keyframe " + "or map-update callback " + std::to_string(longest_callback_ms_) +
+        " ms, " + std::to_string(longest_callback_cpu_ms_) + " ms of CPU)";
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();
@@ -432,7 +509,12 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
   // Every part is tried; the answer names each file that could not be written.
   FileWrites files;
   files.attempt([&] { store_.save(request.path); });
-  files.attempt([&] { saveTrackerMap(request.path); });
+  files.attempt([&] {
+    if (mapping_)
+      throw std::runtime_error(std::string(System::kMapFileName) +
+                               " not written: not yet with ~map_keyframes");
+    saveTrackerMap(request.path);
+  });
   if (T_map_world_)
     files.attempt([&] {
       WorldInMapFile::write((std::filesystem::path(request.path) / WorldInMapFile::kName).string(),

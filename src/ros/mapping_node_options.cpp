@@ -47,6 +47,8 @@ MappingNodeOptions mappingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "map_snapshot_topic", &o.map_snapshot_topic);
   readParam(pnh, "resend_service", &o.resend_service);
   readParam(pnh, "tracker_save_map_service", &o.tracker_save_map_service);
+  readParam(pnh, "map_keyframes", &o.map_keyframes);
+  readParam(pnh, "mapping_job_topic", &o.mapping_job_topic);
   return o;
 }
 

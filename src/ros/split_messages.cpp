@@ -120,7 +120,24 @@ void addFeature(const FeatureMsg& m, size_t levels, FrameFeatures& f) {
   f.depth.push_back(static_cast<float>(finite(m.depth, "a feature's depth")));
 }
 
-FrameFeatures featuresOf(const MappingJobMsg& m, const std::vector<double>* scales) {
+// An image of the job must be of the receiver's camera (or empty, where the job may leave it out).
+void checkSize(const cv::Size& size, const cv::Size& camera, const std::string& what) {
+  if (size != camera)
+    throw std::invalid_argument("the job's " + what + " is " + std::to_string(size.width) + "x" +
+                                std::to_string(size.height) + ", the camera here " +
+                                std::to_string(camera.width) + "x" + std::to_string(camera.height));
+}
+
+cv::Mat imageOf(const sensor_msgs::Image& m, const std::string& encoding, const std::string& what,
+                const cv::Size& camera) {
+  cv::Mat image = fromImageMsg(m, encoding, what);
+  if (!image.empty()) checkSize(image.size(), camera, what);
+  return image;
+}
+
+FrameFeatures featuresOf(const MappingJobMsg& m, const JobReceiver& receiver) {
+  checkSize({m.image_width, m.image_height}, receiver.image_size, "features' image");
+  const std::vector<double>* scales = receiver.scales;
   FrameFeatures f;
   f.scales = scales;
   f.width = m.image_width;
@@ -132,13 +149,13 @@ FrameFeatures featuresOf(const MappingJobMsg& m, const std::vector<double>* scal
   return f;
 }
 
-std::shared_ptr<KeyFrame> keyFrameOf(const MappingJobMsg& m, const std::vector<double>* scales) {
+std::shared_ptr<KeyFrame> keyFrameOf(const MappingJobMsg& m, const JobReceiver& receiver) {
   auto kf = std::make_shared<KeyFrame>();
   kf->id = m.id;
   kf->frame_id = m.frame_id;
   kf->stamp = finite(m.stamp, "the keyframe's stamp");
   kf->T_cw = fromRigidMsg(m.T_cw);
-  kf->features = featuresOf(m, scales);
+  kf->features = featuresOf(m, receiver);
   kf->map_points.assign(kf->features.size(), nullptr);
   kf->map_lines.assign(m.line_slots, nullptr);
   return kf;
@@ -250,20 +267,21 @@ MappingJobMsg toMsg(const MappingJob& job, const std::string& world_frame) {
   return m;
 }
 
-MappingJob fromMsg(const MappingJobMsg& m, const std::vector<double>* scales) {
+MappingJob fromMsg(const MappingJobMsg& m, const JobReceiver& receiver) {
   MappingJob job;
-  job.keyframe = keyFrameOf(m, scales);
+  job.keyframe = keyFrameOf(m, receiver);
   job.report = fromMsg(m.report);
   checkLinks(job.report, *job.keyframe);
   job.followed_updates = static_cast<long>(m.followed_updates);
   job.reference_keyframe = m.reference_keyframe;
   job.images.stamp = job.keyframe->stamp;
   job.images.depth_stamp = finite(m.depth_stamp, "the depth stamp");
-  job.images.rgb = fromImageMsg(m.rgb, enc::BGR8, "rgb");
-  job.images.depth = fromImageMsg(m.depth, enc::TYPE_32FC1, "depth");
-  job.segmentation.label_image = fromImageMsg(m.label_image, enc::TYPE_16UC1, "label_image");
+  const cv::Size& camera = receiver.image_size;
+  job.images.rgb = imageOf(m.rgb, enc::BGR8, "rgb", camera);
+  job.images.depth = imageOf(m.depth, enc::TYPE_32FC1, "depth", camera);
+  job.segmentation.label_image = imageOf(m.label_image, enc::TYPE_16UC1, "label_image", camera);
   job.segmentation.instances = fromMsgs<PacketInstance>(m.instances);
-  job.segmentation.dynamic_mask = fromImageMsg(m.dynamic_mask, enc::MONO8, "dynamic_mask");
+  job.segmentation.dynamic_mask = imageOf(m.dynamic_mask, enc::MONO8, "dynamic_mask", camera);
   return job;
 }
 

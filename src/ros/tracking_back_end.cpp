@@ -15,8 +15,10 @@ TrackingBackEnd TrackingBackEnd::fromOptions(const TrackingNodeOptions& options)
     SystemConfig config = options.config;
     config.camera = camera;
     if (!segmented) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
-    auto system = std::make_unique<System>(
-        config, options.mapping_thread ? MappingMode::kOwnThread : MappingMode::kInline);
+    const MappingMode mode = options.mapping_apart    ? MappingMode::kApart
+                             : options.mapping_thread ? MappingMode::kOwnThread
+                                                      : MappingMode::kInline;
+    auto system = std::make_unique<System>(config, mode);
     if (!options.map.empty()) system->loadMap(options.map, options.localisation_only);
     return system;
   };

@@ -14,7 +14,9 @@
 #include <sstream>
 
 #include "ply_slam/common/statistics.h"
+#include "ply_slam/common/stopwatch.h"
 #include "ply_slam/ros/conversions.h"
+#include "ply_slam/ros/split_messages.h"
 #include "ply_slam/semantic/segmentation_image.h"
 #include "ply_slam/system/tracking_image.h"
 
@@ -51,6 +53,11 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNode
   save_map_srv_ = pnh_.advertiseService("save_map", &TrackingNode::onSaveMap, this);
   stats_pub_ = pnh_.advertise<std_msgs::String>("stats", 1, true);
   tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
+  if (options_.mapping_apart) {
+    job_pub_ = pnh_.advertise<MappingJobMsg>("mapping_job", 100);
+    mapper_update_sub_ =
+        nh_.subscribe(options_.mapper_update_topic, 100, &TrackingNode::onMapperUpdate, this);
+  }
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
 
   const int sync_queue = options_.sync_queue_size;
@@ -244,20 +251,23 @@ void TrackingNode::work() {
       std::unique_lock<std::mutex> lock(queue_mutex_);
       // Between frames the mapping thread's results go out too: a loop closed after the last
       // frame must not wait for the next one.
-      idle = !queue_cv_.wait_for(lock, kMappedPollPeriod,
-                                 [this] { return stopping_ || !queue_.empty(); });
+      idle = !queue_cv_.wait_for(lock, kMappedPollPeriod, [this] {
+        return stopping_ || !queue_.empty() || !mapper_updates_.empty();
+      });
       if (stopping_) return;  // shutting down: frames still waiting are not tracked
+      idle = idle || queue_.empty();
       if (!idle) {
         job = std::move(queue_.front());
         queue_.pop_front();
       }
     }
     try {
+      const bool followed = followMapper();
       if (idle) {
         sendPath();  // the last poses of a stream that stopped
         if (!system_) continue;
         const std::vector<MappedKeyFrame> mapped = system_->takeMapped();
-        if (mapped.empty() && system_->mappingBacklog() == mapping_backlog_) continue;
+        if (mapped.empty() && system_->mappingBacklog() == mapping_backlog_ && !followed) continue;
         publishMapped(mapped);
       } else if (job.task)
         job.task();
@@ -289,6 +299,8 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
   }
   try {
     system_ = back_end_.make_system(camera);
+    if (options_.mapping_apart)
+      system_->setJobSink([this](MappingJob job) { outgoing_.push_back(std::move(job)); });
   } catch (const std::exception& e) {
     start_failed_ = true;
     ROS_FATAL_STREAM("tracking_node: " << e.what());
@@ -326,6 +338,51 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
   else
     ++lost_;
   publish(rgb, images, instances, result);
+  publishJobs(rgb.header.stamp);
+}
+
+// The mapping side's updates in the order it made them. One missed (a restart of either node) is
+// lost for good: the copy goes on with what it has, which is said.
+void TrackingNode::onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
+  MapUpdate update;
+  try {
+    update = fromMsg(*msg);
+  } catch (const std::exception& e) {
+    bad_input_.report("map_update", e.what());
+    return;
+  }
+  if (const uint64_t missed = mapper_update_sequence_.receive(msg->sequence))
+    ROS_ERROR_STREAM("tracking_node: missed " << missed << " map updates from the mapping side; "
+                                              << "the tracker's copy of the map goes on without");
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    mapper_updates_.push_back(std::move(update));
+  }
+  queue_cv_.notify_one();
+}
+
+bool TrackingNode::followMapper() {
+  std::deque<MapUpdate> updates;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    updates.swap(mapper_updates_);
+  }
+  if (updates.empty() || !system_) return false;
+  const ThreadCpuStopwatch cpu;
+  for (const MapUpdate& update : updates) system_->followMapUpdate(update);
+  updates_followed_ += updates.size();
+  longest_follow_cpu_ms_ = std::max(longest_follow_cpu_ms_, cpu.elapsedMs());
+  return true;
+}
+
+void TrackingNode::publishJobs(const ros::Time& stamp) {
+  for (const MappingJob& job : outgoing_) {
+    MappingJobMsg msg = toMsg(job, options_.world_frame);
+    msg.header.stamp = stamp;
+    msg.sequence = keyframes_++;
+    job_pub_.publish(msg);
+  }
+  outgoing_.clear();
 }
 
 void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
@@ -418,6 +475,7 @@ void TrackingNode::publishStats() {
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
+    << " updates_followed=" << updates_followed_ << " follow_cpu_ms_max=" << longest_follow_cpu_ms_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
     << " median_ms=" << median(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();

@@ -166,7 +166,11 @@ class JobTest : public ::testing::Test {
   }
 
   MappingJob throughMessage(const MappingJob& job) const {
-    return fromMsg(throughWire(toMsg(job, "map")), &extractor_.scales());
+    return fromMsg(throughWire(toMsg(job, "map")), receiver());
+  }
+
+  JobReceiver receiver() const {
+    return {&extractor_.scales(), cv::Size(config_.camera.width, config_.camera.height)};
   }
 
   const SystemConfig config_ = fr1Config();
@@ -223,46 +227,55 @@ TEST_F(JobTest, TravelsBitForBit) {
 
 TEST_F(JobTest, InconsistentJobsAreRejected) {
   const MappingJobMsg good = toMsg(job_, "map");
-  const auto* scales = &extractor_.scales();
+  const JobReceiver here = receiver();
   MappingJobMsg msg = good;
   msg.descriptors.pop_back();
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "descriptors");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "descriptors");
   msg = good;
-  msg.features[5].octave = static_cast<int>(scales->size());
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "outside the pyramid");
+  msg.features[5].octave = static_cast<int>(here.scales->size());
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "outside the pyramid");
   msg = good;
   msg.report.point_links[0].keypoint = static_cast<uint32_t>(good.features.size());
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "keypoint");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "keypoint");
   msg = good;
   msg.line_slots = 1;
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "line 1 of 1");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "line 1 of 1");
   msg = good;
   msg.report.keyframe = 5;
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "report is of keyframe 5");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "report is of keyframe 5");
   msg = good;
   msg.report.point_links[0].created[0].id = 21;
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "another landmark");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "another landmark");
   msg = good;
   msg.report.point_links[0].created[0].position.x = std::nan("");
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "not finite");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "not finite");
   msg = good;
   msg.features[0].u = std::numeric_limits<double>::infinity();
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "not finite");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "not finite");
   msg = good;
   msg.T_cw.matrix[5] = 0.0;
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "rotation");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "rotation");
   msg = good;
   msg.depth.encoding = "16UC1";
-  expectRejectedNaming([&] { fromMsg(msg, scales); }, "depth");
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "depth");
+  msg = good;
+  msg.image_width = 1 << 30;  // (the fuzzer's: a grid of that size did not fit in memory)
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "features' image is 1073741824x480");
+  msg = good;
+  msg.rgb = toMsg(job_, "map").dynamic_mask;  // 640x480 mono8: not bgr8
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "rgb");
+  JobReceiver smaller = here;
+  smaller.image_size = cv::Size(320, 240);
+  expectRejectedNaming([&] { fromMsg(good, smaller); }, "the camera here 320x240");
 }
 
 // Every report and keyframe reaches the follower through MappingJobMsg, every update through
 // MapUpdateMsg, both serialised: the follower equals the map after every keyframe.
 class SerialisingWire : public test::ReplicaRun::Wire {
  public:
-  explicit SerialisingWire(const std::vector<double>* scales) : scales_(scales) {}
+  explicit SerialisingWire(JobReceiver receiver) : receiver_(receiver) {}
   MappingJob toMapper(MappingJob job) override {
-    return fromMsg(throughWire(toMsg(job, "map"), &job_bytes), scales_);
+    return fromMsg(throughWire(toMsg(job, "map"), &job_bytes), receiver_);
   }
   MapUpdate toTracker(MapUpdate update) override {
     return fromMsg(throughWire(toMsg(update, "map"), &update_bytes));
@@ -270,7 +283,7 @@ class SerialisingWire : public test::ReplicaRun::Wire {
   size_t job_bytes = 0, update_bytes = 0;
 
  private:
-  const std::vector<double>* scales_;
+  const JobReceiver receiver_;
 };
 
 TEST(SplitMessages, AMapFollowsTheTrackerAndTheMapperThroughTheirMessages) {
@@ -280,7 +293,7 @@ TEST(SplitMessages, AMapFollowsTheTrackerAndTheMapperThroughTheirMessages) {
   config.loop.enabled = false;
   const TumSequence sequence(rpyFolder());
   const OrbExtractor scales_of(config.orb);
-  SerialisingWire wire(&scales_of.scales());
+  SerialisingWire wire({&scales_of.scales(), cv::Size(config.camera.width, config.camera.height)});
   test::ReplicaRun run(config, 1, &wire);
   for (size_t i = 0; i < sequence.size() && i < 120; ++i) {
     run.process(static_cast<long>(i), sequence.load(i, config.camera.depth_factor));
@@ -317,8 +330,8 @@ TEST(SplitMessages, ATrackerAndAMappingSideApartRunAsTheSplitSystem) {
     ASSERT_TRUE(a.tracking.T_cw.matrix() == b.tracking.T_cw.matrix()) << "frame " << i;
     ASSERT_EQ(jobs.size(), a.mapped.size()) << "frame " << i;
     for (; !jobs.empty(); jobs.pop_front()) {
-      const MappingJob job =
-          fromMsg(throughWire(toMsg(jobs.front(), "map"), &bytes), &scales_of.scales());
+      const MappingJob job = fromMsg(throughWire(toMsg(jobs.front(), "map"), &bytes),
+                                     {&scales_of.scales(), images.rgb.size()});
       const MappedKeyFrame mapped = mapping.mapKeyFrame(job);
       apart.followMapUpdate(fromMsg(throughWire(toMsg(*mapped.map_update, "map"), &bytes)));
       ++keyframes;

@@ -5,6 +5,7 @@
 #include "ply_slam/common/config.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/dense/occupancy_grid_builder.h"
+#include "ply_slam/system/mapping_side.h"
 
 namespace ply_slam {
 
@@ -14,8 +15,12 @@ namespace ply_slam {
 struct MappingBackEnd {
   std::unique_ptr<DenseMappingWorker> dense;           // null: dense.enabled is false
   std::unique_ptr<OccupancyGridBuilder> grid_builder;  // null: no dense maps or grid.enabled false
+  // ~map_keyframes: the mapping side, and the ORB pyramid's scale per level its keyframes use.
+  std::unique_ptr<MappingSide> mapping;
+  std::vector<double> orb_scales;
 
-  static MappingBackEnd fromConfig(const SystemConfig& config);
+  // Throws std::runtime_error naming a vocabulary that does not load (map_keyframes, loop on).
+  static MappingBackEnd fromConfig(const SystemConfig& config, bool map_keyframes = false);
 };
 
 }  // namespace ply_slam

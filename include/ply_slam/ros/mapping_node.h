@@ -4,6 +4,7 @@
 #include <ply_slam/KeyFrameMsg.h>
 #include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
+#include <ply_slam/MappingJobMsg.h>
 #include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
@@ -26,18 +27,22 @@
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/mapping_back_end.h"
 #include "ply_slam/ros/mapping_node_options.h"
+#include "ply_slam/system/mapping_thread.h"
 
 namespace ply_slam {
 
 // ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps a copy of the map from the
 // tracker's keyframes and map updates (MapStore), shows it (points, lines, keyframes, path, dense
 // cloud, semantic octree), broadcasts tf and saves trajectory and maps on request. Local bundle
-// adjustment, culling and loop closure run in the tracking process (System, in line); their
-// results arrive here as MapUpdates (README, "Layout"). Its main reads the options and builds
-// the back-end (dense maps, grid).
+// adjustment, culling and loop closure run in the tracking process (System), their results
+// arriving here as MapUpdates (README, "Layout"); with ~map_keyframes they run here instead, on
+// the jobs of a tracker with ~mapping_apart (a MappingSide on a MappingThread), and the updates
+// go back to it on ~map_update. Its main reads the options and builds the back-end (dense maps,
+// grid, the mapping side).
 //
 // Threads: every subscriber, timer and service runs on ros::spin's one thread; the dense maps
-// build on the DenseMappingWorker's own thread behind its own lock (withMaps). mutex_ guards
+// build on the DenseMappingWorker's own thread behind its own lock (withMaps), the mapping side
+// on the MappingThread's (its results are taken by a timer on the spinner). mutex_ guards
 // what the callbacks share, so a multi-threaded spinner would stay correct too.
 class MappingNode {
  public:
@@ -48,6 +53,12 @@ class MappingNode {
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
+  // The store and the dense maps take a keyframe and what the mapping side changed.
+  void keepKeyFrame(const std::shared_ptr<const KeyFramePacket>& packet);
+  void keepMapUpdate(const MapUpdate& update);
+  // ~map_keyframes: a tracker's job to the mapping thread; what it made, to the tracker and kept.
+  void onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg);
+  void takeMapped();
   // A gap in the tracker's numbering (`missed` > 0: say so), or the start: ask the tracker for
   // its whole map.
   void onMissed(uint64_t missed, const std::string& what);
@@ -96,6 +107,16 @@ class MappingNode {
   BadInputLog bad_input_;  // locks itself
 
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
+  // ~map_keyframes: the mapping side (its map is its own) on its thread, the tracker's jobs in
+  // (numbered; spinner thread only) and the updates out (numbered in the same way).
+  std::unique_ptr<MappingSide> mapping_;
+  std::vector<double> orb_scales_;
+  std::unique_ptr<MappingThread> mapping_thread_;
+  ros::Subscriber job_sub_;
+  ros::Publisher update_pub_;
+  ros::WallTimer mapped_timer_;
+  MessageSequence job_sequence_;
+  uint64_t updates_sent_ = 0, loops_closed_ = 0;
   ros::ServiceClient resend_client_;
   // tracking_node's ~save_map: the map file that loads again comes from the tracker, which
   // holds the whole map (descriptors, covisibility, place data); MapStore holds less.

@@ -34,6 +34,11 @@ struct MappingNodeOptions {
   std::string map_snapshot_topic = "tracking_node/map_snapshot";
   std::string resend_service = "tracking_node/resend_map";
   std::string tracker_save_map_service = "tracking_node/save_map";
+  // Run the mapping side here (a MappingSide on a thread of its own) on the jobs of a tracker
+  // with ~mapping_apart, and send it the updates (~map_update); false: keep a copy of the map
+  // the tracking process maps (keyframe_topic, map_update_topic).
+  bool map_keyframes = false;
+  std::string mapping_job_topic = "tracking_node/mapping_job";
 };
 
 // Throws ConfigError for a missing or bad ~config (as configFromParams) and std::invalid_argument

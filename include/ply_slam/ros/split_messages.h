@@ -22,10 +22,17 @@ TrackerReport fromMsg(const TrackerReportMsg& msg);
 // A job with its keyframe (the mapping side's unlinked copy); `world_frame` goes into
 // header.frame_id. The sequence number is the sender's.
 MappingJobMsg toMsg(const MappingJob& job, const std::string& world_frame);
-// `scales`: the ORB pyramid's scale per level (the receiving side's extractor's, which
-// outlives the keyframe). Throws std::invalid_argument on an inconsistent message: descriptor
-// rows against features, a feature's level outside the pyramid, a link naming a keypoint or
-// line the keyframe has not, a number that is not finite, image encodings other than toMsg's.
-MappingJob fromMsg(const MappingJobMsg& msg, const std::vector<double>* scales);
+
+// What the receiving side checks a job against and makes its keyframe with.
+struct JobReceiver {
+  const std::vector<double>* scales = nullptr;  // the ORB pyramid's scale per level (its
+                                                // extractor's, which outlives the keyframes)
+  cv::Size image_size;                          // its camera's
+};
+// Throws std::invalid_argument on an inconsistent message: an image size other than the
+// receiver's camera's (features or images), descriptor rows against features, a feature's level
+// outside the pyramid, a link naming a keypoint or line the keyframe has not, a number that is
+// not finite, image encodings other than toMsg's.
+MappingJob fromMsg(const MappingJobMsg& msg, const JobReceiver& receiver);
 
 }  // namespace ply_slam

@@ -20,6 +20,7 @@
 #include <mutex>
 #include <thread>
 
+#include "ply_slam/common/message_sequence.h"
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
 #include "ply_slam/ros/tracking_back_end.h"
@@ -33,8 +34,10 @@ namespace ply_slam {
 // images, keyframes and what the mapping side changed (~map_update, for mapping_node). Frames are
 // tracked on a worker thread in arrival order so the subscribers never block; bad input is
 // counted, logged throttled and skipped. With ~map it starts in a saved map (System::loadMap);
-// ~save_map writes the map file (System::saveMap). Its main reads the options and builds the
-// back-end (segmenter, how to make the System).
+// ~save_map writes the map file (System::saveMap). With ~mapping_apart the mapping side runs in
+// mapping_node: each keyframe goes out as a job (~mapping_job) and the tracker's copy of the map
+// follows the mapping side's updates between two frames (MappingMode::kApart). Its main reads the
+// options and builds the back-end (segmenter, how to make the System).
 //
 // Threads: the spinner (ros::spin, one thread: subscribers, the flush timer, services) and the
 // worker (work(): tracking, publishing what tracking made). What both touch is guarded below,
@@ -73,6 +76,10 @@ class TrackingNode {
   void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
                const FrameResult& result);
   void publishStats();
+  // ~mapping_apart: the mapping side's updates, in, and the tracker's keyframes, out.
+  void onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
+  bool followMapper();  // true when it followed any
+  void publishJobs(const ros::Time& stamp);
   void addToPath(const geometry_msgs::PoseStamped& pose, const Eigen::Isometry3d& T_wc);
   void sendPath();
 
@@ -84,7 +91,9 @@ class TrackingNode {
   size_t mapping_backlog_ = 0;  // keyframes the mapping thread had not finished (last looked)
   // How often the idle worker looks for the mapping thread's results.
   static constexpr std::chrono::milliseconds kMappedPollPeriod{100};
-  bool start_failed_ = false;  // the System could not be made: no frame is tracked
+  bool start_failed_ = false;           // the System could not be made: no frame is tracked
+  std::vector<MappingJob> outgoing_;    // ~mapping_apart: the frame's keyframe, to send
+  double longest_follow_cpu_ms_ = 0.0;  // following the mapping side's updates, between frames
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
   RgbdMessageDecoder decoder_;
@@ -94,6 +103,8 @@ class TrackingNode {
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
   ros::Subscriber info_sub_;
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
+  ros::Publisher job_pub_;             // ~mapping_apart
+  ros::Subscriber mapper_update_sub_;  // ~mapping_apart
   ros::ServiceServer resend_srv_, save_map_srv_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;  // worker thread only, as last_path_pose_ and total_ms_
@@ -117,10 +128,12 @@ class TrackingNode {
   sensor_msgs::CameraInfoConstPtr camera_info_;  // under info_mutex_
 
   // The jobs from the spinner to the worker (frames, ~resend_map, ~save_map) and the stop.
-  std::mutex queue_mutex_;            // guards queue_ and stopping_
-  std::condition_variable queue_cv_;  // queue_ grew or stopping_ was set
-  std::deque<Job> queue_;             // under queue_mutex_
-  bool stopping_ = false;             // under queue_mutex_
+  std::mutex queue_mutex_;                  // guards queue_ and stopping_
+  std::condition_variable queue_cv_;        // queue_ grew or stopping_ was set
+  std::deque<Job> queue_;                   // under queue_mutex_
+  std::deque<MapUpdate> mapper_updates_;    // ~mapping_apart, under queue_mutex_
+  MessageSequence mapper_update_sequence_;  // spinner thread only
+  bool stopping_ = false;                   // under queue_mutex_
   std::thread worker_;
 
   // Counters for ~stats and the shutdown report (atomic: counted on one thread, read on both);
@@ -128,7 +141,7 @@ class TrackingNode {
   // what it missed from the gaps).
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
-      updates_{0}, loops_{0};
+      updates_{0}, loops_{0}, updates_followed_{0};
   std::vector<double> total_ms_;  // worker thread only
 };
 

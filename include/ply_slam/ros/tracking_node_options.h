@@ -35,6 +35,10 @@ struct TrackingNodeOptions {
   std::string map;  // a saved map folder to localise in; "" = a new map
   bool localisation_only = true;
   bool mapping_thread = true;  // the mapping side beside tracking, not after each keyframe
+  // The mapping side in mapping_node (~map_keyframes there): keyframes go out as jobs on
+  // ~mapping_job, the tracker's copy of the map follows the updates on mapper_update_topic.
+  bool mapping_apart = false;
+  std::string mapper_update_topic = "mapping_node/map_update";
 };
 
 // Throws ConfigError for a missing or bad ~config (as configFromParams) and std::invalid_argument
