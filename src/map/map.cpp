@@ -223,6 +223,25 @@ void Map::replay(const MapJournal& journal) {
   }
 }
 
+void Map::relinkLocked(const MapUpdate::KeyFrameLinks& links) {
+  if (links.keyframe < 0) return;
+  const auto kf = std::find_if(keyframes_.begin(), keyframes_.end(),
+                               [&](const auto& k) { return k->id == links.keyframe; });
+  if (kf == keyframes_.end()) return;
+  KeyFrame& keyframe = **kf;
+  std::vector<std::shared_ptr<MapPoint>> wanted(keyframe.map_points.size());
+  const auto points = byId(points_);
+  for (const auto& [index, id] : links.points)
+    if (const auto p = points.find(id); p != points.end() && index < wanted.size())
+      wanted[index] = p->second;
+  // Unlink first: a point may move from one keypoint to another.
+  for (size_t i = 0; i < wanted.size(); ++i)
+    if (keyframe.map_points[i] != wanted[i]) removeObservationLocked(keyframe, i);
+  for (size_t i = 0; i < wanted.size(); ++i)
+    if (wanted[i] && keyframe.map_points[i] != wanted[i])
+      addObservationLocked(keyframe, i, wanted[i]);
+}
+
 void Map::addObservationFollowed(KeyFrame& keyframe, size_t index,
                                  const std::shared_ptr<MapPoint>& point) {
   const auto& held = keyframe.map_points[index];
@@ -234,6 +253,10 @@ void Map::addObservationFollowed(KeyFrame& keyframe, size_t index,
 }
 
 void Map::apply(const MapUpdate& update) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    relinkLocked(update.replayed);
+  }
   replay(update.journal);
   std::lock_guard<std::mutex> lock(mutex_);
   const auto keyframes = byId(keyframes_);

@@ -245,6 +245,11 @@ MapUpdateMsg toMsg(const MapUpdate& u, const std::string& world_frame) {
   m.erased_points.assign(u.erased_points.begin(), u.erased_points.end());
   m.erased_lines.assign(u.erased_lines.begin(), u.erased_lines.end());
   m.whole_map = u.whole_map;
+  m.replayed_keyframe = u.replayed.keyframe;
+  for (const auto& [keypoint, point] : u.replayed.points) {
+    m.replayed_keypoints.push_back(static_cast<uint32_t>(keypoint));
+    m.replayed_points.push_back(point);
+  }
   m.journal = toMsgs<JournalEntryMsg>(u.journal.entries);
   for (const auto& correction : u.world_corrections)
     m.world_corrections.push_back(toRigidMsg(correction));
@@ -261,6 +266,13 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   u.erased_points.assign(m.erased_points.begin(), m.erased_points.end());
   u.erased_lines.assign(m.erased_lines.begin(), m.erased_lines.end());
   u.whole_map = m.whole_map;
+  if (m.replayed_keypoints.size() != m.replayed_points.size())
+    throw std::invalid_argument("map update has " + std::to_string(m.replayed_keypoints.size()) +
+                                " replayed keypoints but " +
+                                std::to_string(m.replayed_points.size()) + " replayed points");
+  u.replayed.keyframe = m.replayed_keyframe;
+  for (size_t i = 0; i < m.replayed_points.size(); ++i)
+    u.replayed.points.emplace_back(m.replayed_keypoints[i], m.replayed_points[i]);
   u.journal.entries = fromMsgs<MapJournal::Entry>(m.journal);
   for (const auto& correction : m.world_corrections)
     u.world_corrections.push_back(fromRigidMsg(correction));

@@ -20,7 +20,8 @@ MappingSide::MappingSide(const SystemConfig& config, bool follows_reports, bool 
 MappedKeyFrame MappingSide::mapKeyFrame(const MappingJob& job) {
   Stopwatch mapping;
   MappedKeyFrame out;
-  if (follows_reports_ && job.keyframe) followTracker(job);
+  MapUpdate::KeyFrameLinks replayed;
+  if (follows_reports_ && job.keyframe) replayed = followTracker(job);
   // A copy following by reports follows by what this does to the map.
   MapJournal journal;
   if (follows_reports_) map_.journalTo(&journal);
@@ -32,13 +33,14 @@ MappedKeyFrame MappingSide::mapKeyFrame(const MappingJob& job) {
   }
   if (follows_reports_) map_.journalTo(nullptr);
   const bool whole_map = !mapped || out.loop_correction || mapped->global_ba_applied;
-  out.map_update =
-      std::make_shared<const MapUpdate>(updateOf(mapped, whole_map, std::move(journal)));
+  MapUpdate update = updateOf(mapped, whole_map, std::move(journal));
+  update.replayed = std::move(replayed);
+  out.map_update = std::make_shared<const MapUpdate>(std::move(update));
   out.ms = mapping.elapsedMs();
   return out;
 }
 
-void MappingSide::followTracker(const MappingJob& job) {
+MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   // Merges the tracker's copy had followed before the report began are no longer named in it.
   while (!merge_log_.empty() && merge_log_.front().first <= job.followed_updates) {
     merged_.erase(merge_log_.front().second);
@@ -47,6 +49,11 @@ void MappingSide::followTracker(const MappingJob& job) {
   std::lock_guard<std::mutex> lock(map_.updateMutex());
   mapper_.replay(job.report, job.keyframe, merged_);
   if (hooks_.replayed) hooks_.replayed();
+  MapUpdate::KeyFrameLinks links{job.keyframe->id, {}};
+  const auto& points = job.keyframe->map_points;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (points[i]) links.points.emplace_back(i, points[i]->id);
+  return links;
 }
 
 KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {

@@ -184,6 +184,7 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   u.erased_points = {7, 8, 9};
   u.erased_lines = {4, 5};
   u.whole_map = true;
+  u.replayed = {4, {{0, 11}, {17, 12}}};
   using C = MapJournal::Change;
   u.journal.entries = {{C::kAddObservation, 4, 11, -1, 17, 0},
                        {C::kRemoveObservation, 1, -1, -1, 3, 0},
@@ -212,6 +213,8 @@ TEST(RosConversions, MapUpdateRoundTrip) {
   EXPECT_EQ(v.erased_points, (std::vector<long>{7, 8, 9}));
   EXPECT_EQ(v.erased_lines, (std::vector<long>{4, 5}));
   EXPECT_TRUE(v.whole_map);
+  EXPECT_EQ(v.replayed.keyframe, 4);
+  EXPECT_EQ(v.replayed.points, u.replayed.points);
   ASSERT_EQ(v.journal.entries.size(), u.journal.entries.size());
   for (size_t i = 0; i < u.journal.entries.size(); ++i) {
     const auto &a = v.journal.entries[i], &b = u.journal.entries[i];
@@ -238,6 +241,9 @@ TEST(RosConversions, MapUpdateWithABadPoseOrChangeIsRejected) {
   msg.journal.resize(1);
   msg.journal[0].change = 9;
   expectRejectedNaming([&] { fromMsg(msg); }, "unknown change");
+  msg = toMsg(u, "map");
+  msg.replayed_points = {3};
+  expectRejectedNaming([&] { fromMsg(msg); }, "replayed keypoints");
 }
 
 // The grid message: cells as stored, and info.origin the pose of cell (0, 0)'s corner in the

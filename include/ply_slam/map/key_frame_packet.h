@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
@@ -92,12 +93,21 @@ struct MapUpdate {
   std::vector<long> erased_points;
   // Line landmarks that left the map since the last update (every keyframe that saw them erased).
   std::vector<long> erased_lines;
+  // The point links of the keyframe this update maps, as the mapping side made them from the
+  // tracker's report. A copy that went on meanwhile followed merges in another order and may
+  // hold a merged point at another keypoint; it takes these before the journal, which then does
+  // on both the same. keyframe -1: none (in line, or no keyframe).
+  struct KeyFrameLinks {
+    long keyframe = -1;
+    std::vector<std::pair<size_t, long>> points;  // (keypoint, point id), by keypoint
+  };
+  KeyFrameLinks replayed;
   // Who sees what, changed in this order (merges, outliers unlinked, erasures): with the values
-  // above, what a copy of the map needs to follow (Map::apply). The messages do not carry it.
+  // above, what a copy of the map needs to follow (Map::apply).
   MapJournal journal;
   // How the mapping side moved the world meanwhile (loop corrections, global bundle adjustments
   // written back), in order: T_wc(after) = correction * T_wc(before) for the newest keyframe it
-  // had. Whoever tracks in a copy moves along (Tracker::applyCorrection). Not in the messages.
+  // had. Whoever tracks in a copy moves along (Tracker::applyCorrection).
   std::vector<Eigen::Isometry3d> world_corrections;
 };
 

@@ -61,9 +61,10 @@ class Map {
   // keyframe or point this map does not hold is left out). Not journaled again.
   void replay(const MapJournal& journal);
 
-  // Follows what the mapping side did to its copy of this map: `update`'s journal replayed,
-  // then the poses, tree parents and landmark values it carries set, then the landmarks turned
-  // bad dropped (removeBadLandmarks). Ids this map does not hold are left out.
+  // Follows what the mapping side did to its copy of this map: the links it made for the
+  // keyframe it mapped taken, `update`'s journal replayed, then the poses, tree parents and
+  // landmark values it carries set, then the landmarks turned bad dropped (removeBadLandmarks).
+  // Ids this map does not hold are left out.
   void apply(const MapUpdate& update);
 
   // A keyframe or landmark made on another copy of the map (LandmarkCreator::replay), its id
@@ -94,6 +95,8 @@ class Map {
   using LinesById = std::unordered_map<long, std::shared_ptr<MapLine>>;
   // apply: erases what the update says left the mapping side's map and is still here.
   void eraseGone(const MapUpdate& update, const PointsById& points, const LinesById& lines);
+  // apply: the keyframe's point links made exactly `links` (points this map lacks: no link).
+  void relinkLocked(const MapUpdate::KeyFrameLinks& links);
   // replay's link: as addObservationLocked, over whatever link the keyframe holds there.
   void addObservationFollowed(KeyFrame& keyframe, size_t index,
                               const std::shared_ptr<MapPoint>& point);

@@ -55,7 +55,8 @@ class MappingSide {
   const Mapper& mapper() const { return mapper_; }
 
  private:
-  void followTracker(const MappingJob& job);
+  // Replays the job's report; returns the keyframe's point links it made.
+  MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // What it did, for the copies of the map (`mapped`: none for a global bundle adjustment
   // written back alone).
