@@ -509,11 +509,13 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
   // Every part is tried; the answer names each file that could not be written.
   FileWrites files;
   files.attempt([&] { store_.save(request.path); });
+  // The map file is written by whoever owns the map: this node with ~map_keyframes, else the
+  // tracker.
   files.attempt([&] {
     if (mapping_)
-      throw std::runtime_error(std::string(System::kMapFileName) +
-                               " not written: not yet with ~map_keyframes");
-    saveTrackerMap(request.path);
+      mapping_->saveMap((std::filesystem::path(request.path) / System::kMapFileName).string());
+    else
+      saveTrackerMap(request.path);
   });
   if (T_map_world_)
     files.attempt([&] {

@@ -1,8 +1,10 @@
 #include "ply_slam/system/mapping_side.h"
 
+#include <filesystem>
 #include <set>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/map/map_file_writer.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
@@ -11,10 +13,22 @@ MappingSide::MappingSide(const SystemConfig& config, bool follows_reports, bool 
     : camera_(config.camera),
       follows_reports_(follows_reports),
       mapper_(config.camera, mapperOptions(config), map_, wait_for_global_ba) {
+  file_setup_.camera = config.camera;
+  file_setup_.orb_levels = config.orb.num_levels;
+  file_setup_.orb_scale_factor = config.orb.scale_factor;
+  file_setup_.orb_vocabulary = mapper_.orbVocabulary();
+  file_setup_.lbd_vocabulary = mapper_.lbdVocabulary();
   // Whoever tracks in a copy moves along when it follows the update that says so.
   if (follows_reports_)
     mapper_.setCorrectionListener(
         [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
+}
+
+void MappingSide::saveMap(const std::string& file) const {
+  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  MapFileWriter::write(file, file_setup_, map_, mapper_.places());
 }
 
 MappedKeyFrame MappingSide::mapKeyFrame(const MappingJob& job) {

@@ -11,7 +11,6 @@
 
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/map/map_file_reader.h"
-#include "ply_slam/map/map_file_writer.h"
 #include "ply_slam/mapping/carry_along.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
@@ -370,28 +369,9 @@ std::vector<KeyFramePacket> System::sparseKeyFramePackets() const {
   return packets;
 }
 
-MapFileSetup System::mapFileSetup() const {
-  MapFileSetup setup;
-  setup.camera.fx = config_.camera.fx;
-  setup.camera.fy = config_.camera.fy;
-  setup.camera.cx = config_.camera.cx;
-  setup.camera.cy = config_.camera.cy;
-  setup.camera.width = config_.camera.width;
-  setup.camera.height = config_.camera.height;
-  setup.orb_levels = config_.orb.num_levels;
-  setup.orb_scale_factor = config_.orb.scale_factor;
-  if (!mapping_) return setup;  // kApart: no place database
-  setup.orb_vocabulary = mapping_->mapper().orbVocabulary();
-  setup.lbd_vocabulary = mapping_->mapper().lbdVocabulary();
-  return setup;
-}
-
 void System::saveMap(const std::string& folder) const {
   if (!mapping_) throw std::logic_error("System::saveMap: the mapping side (elsewhere) saves it");
-  std::filesystem::create_directories(folder);
-  std::lock_guard<std::mutex> lock(mapping_->map().updateMutex());
-  MapFileWriter::write((std::filesystem::path(folder) / kMapFileName).string(), mapFileSetup(),
-                       mapping_->map(), mapping_->mapper().places());
+  mapping_->saveMap((std::filesystem::path(folder) / kMapFileName).string());
 }
 
 void System::loadMap(const std::string& folder, bool localisation_only) {
@@ -400,10 +380,11 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
     throw std::logic_error("System::loadMap: a map is loaded before the first frame");
   // Read and checked whole before anything changes: a bad file leaves the system as it was.
   const std::string file = (std::filesystem::path(folder) / kMapFileName).string();
-  MapFileContents loaded = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
+  const MapFileSetup& setup = mapping_->mapFileSetup();
+  MapFileContents loaded = MapFileReader::read(file, setup, &extractor_.scales());
   // The split modes: the tracker's copy is a map of its own, from the same file.
   std::optional<MapFileContents> tracker_copy;
-  if (tracking_map_) tracker_copy = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
+  if (tracking_map_) tracker_copy = MapFileReader::read(file, setup, &extractor_.scales());
   long last_frame = -1;
   for (const auto& kf : loaded.keyframes) last_frame = std::max(last_frame, kf->frame_id);
   mapping_->map().adopt(std::move(loaded.keyframes), std::move(loaded.points),

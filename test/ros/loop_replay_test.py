@@ -7,7 +7,9 @@ applied it, and the saved trajectory is more accurate than the poses as they wer
 the correction) and within a bound measured offline. With ~apart the mapping side runs in
 mapping_node (tracking.launch mapping_apart, mapping.launch map_keyframes): the tracker sends its
 keyframes as jobs, mapping_node closes the loop and sends the updates back, and the tracker's copy
-of the map follows them; neither node may hold the other up for more than a frame period."""
+of the map follows them; neither node may hold the other up for more than a frame period, and the
+map file mapping_node then writes itself loads again and relocalises the ring's first frames."""
+import json
 import os
 import shutil
 import subprocess
@@ -15,6 +17,7 @@ import sys
 import time
 import unittest
 
+import numpy as np
 import rospy
 import rostest
 from geometry_msgs.msg import PoseStamped
@@ -41,6 +44,27 @@ class StreamedPoses:
             f.write("\n".join(self.lines) + "\n")
 
 
+def keep_head(sequence, frames):
+    """The first `frames` frames of `sequence` as a sequence of their own beside it."""
+    head = sequence + "_head"
+    for folder in ("rgb", "depth"):
+        os.makedirs(os.path.join(head, folder))
+    for name in ("camera.yaml", "groundtruth.txt"):
+        shutil.copy(os.path.join(sequence, name), head)
+    with open(os.path.join(sequence, "associations.txt")) as f:
+        lines = [line for line in f if line.strip() and not line.startswith("#")][:frames]
+    with open(os.path.join(head, "associations.txt"), "w") as f:
+        f.writelines(lines)
+    for name, columns in (("rgb.txt", slice(0, 2)), ("depth.txt", slice(2, 4))):
+        with open(os.path.join(head, name), "w") as f:
+            f.writelines(" ".join(line.split()[columns]) + "\n" for line in lines)
+    for line in lines:
+        _, rgb, _, depth = line.split()
+        for path in (rgb, depth):
+            shutil.copy(os.path.join(sequence, path), os.path.join(head, path))
+    return head
+
+
 class LoopReplay(unittest.TestCase):
     def test_saved_trajectory_has_the_loop_closed(self):
         frames = rospy.get_param("~frames", 900)
@@ -55,6 +79,7 @@ class LoopReplay(unittest.TestCase):
         bag = os.path.join(work, "ring.bag")
         config = os.path.join(support.PACKAGE_DIR, "test", "ros", "ring_loop.yaml")
         support.tum_to_bag(ring, bag, d435i=True, extra=["--config", config, "--lz4"])
+        head = keep_head(ring, 3)
         shutil.rmtree(os.path.join(ring, "rgb"))  # the bag has them now
         shutil.rmtree(os.path.join(ring, "depth"))
 
@@ -108,6 +133,25 @@ class LoopReplay(unittest.TestCase):
         # 0.0187 m without.
         self.assertLessEqual(saved_ate["rmse"], 0.014)
         self.assertLess(saved_ate["rmse"], 0.8 * streamed_ate["rmse"])
+        if apart:
+            self.check_saved_map_relocalises(work, head, config)
+
+    def check_saved_map_relocalises(self, work, head, config):
+        """Apart, mapping_node owns the map and writes the map file itself: it loads, and the
+        ring's first frames relocalise in it at the start of the world (the first camera's)."""
+        folder = os.path.join(work, "saved_map")
+        success, message = support.save_map(folder)
+        print("save_map: %s %s" % (success, message))
+        self.assertTrue(os.path.isfile(os.path.join(folder, "map.plymap")), message)
+        out = os.path.join(work, "relocalised")
+        run = subprocess.run([support.tool("ply_slam_tum"), "--config", config, "--sequence", head,
+                              "--out", out, "--map", folder], capture_output=True, text=True)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        with open(os.path.join(out, "summary.json")) as f:
+            self.assertEqual(json.load(f)["map"]["first_tracked_frame"], 0)
+        first = np.loadtxt(os.path.join(out, "CameraTrajectory.txt"), ndmin=2)[0]
+        print("first frame relocalised at %s" % first[1:4])
+        self.assertLess(np.linalg.norm(first[1:4]), 0.05)
 
 
 if __name__ == "__main__":

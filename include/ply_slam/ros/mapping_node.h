@@ -118,8 +118,9 @@ class MappingNode {
   MessageSequence job_sequence_;
   uint64_t updates_sent_ = 0, loops_closed_ = 0;
   ros::ServiceClient resend_client_;
-  // tracking_node's ~save_map: the map file that loads again comes from the tracker, which
-  // holds the whole map (descriptors, covisibility, place data); MapStore holds less.
+  // tracking_node's ~save_map: without ~map_keyframes the map file that loads again comes from
+  // the tracker, which holds the whole map (descriptors, covisibility, place data); MapStore
+  // holds less. With it this node owns the map and writes the file itself.
   ros::ServiceClient tracker_save_map_client_;
   ros::WallTimer startup_timer_;
   // Numbering of the tracker's keyframe and map-update messages; missed() counts what the map

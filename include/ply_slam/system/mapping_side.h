@@ -4,11 +4,13 @@
 #include <deque>
 #include <functional>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
+#include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/system/mapping_job.h"
 
@@ -49,6 +51,12 @@ class MappingSide {
   // adjustment that ended (the whole map moves).
   MappedKeyFrame mapKeyFrame(const MappingJob& job);
 
+  // The camera, pyramid and vocabularies a map file of this side's map records.
+  const MapFileSetup& mapFileSetup() const { return file_setup_; }
+  // Writes the map with its place records into `file` (MapFileWriter) under the map's lock;
+  // the folder is created. Throws std::runtime_error naming the file.
+  void saveMap(const std::string& file) const;
+
   Map& map() { return map_; }
   const Map& map() const { return map_; }
   Mapper& mapper() { return mapper_; }
@@ -67,6 +75,7 @@ class MappingSide {
   const bool follows_reports_;
   Map map_;
   Mapper mapper_;
+  MapFileSetup file_setup_;
   Hooks hooks_;
   // How the Mapper moved the world while mapping a keyframe, in order, for its update.
   std::vector<Eigen::Isometry3d> corrections_;

@@ -21,7 +21,6 @@
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
-#include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/semantic/instance.h"
 #include "ply_slam/semantic/instance_memory.h"
 #include "ply_slam/system/mapping_job.h"
@@ -153,8 +152,6 @@ class System {
   // and the fault (missing, truncated, corrupted, another version, camera, pyramid or
   // vocabulary), the system unchanged; std::logic_error after the first frame or with kApart.
   void loadMap(const std::string& folder, bool localisation_only = true);
-  // The camera, pyramid and vocabularies a map file made by this system records.
-  MapFileSetup mapFileSetup() const;
   const SystemConfig& config() const { return config_; }
 
  private:
