@@ -2,6 +2,8 @@
 // at the right place (checked against ground truth).
 #include <gtest/gtest.h>
 
+#include <deque>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
 #include "default_vocabularies.h"
@@ -10,6 +12,7 @@
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/mapping/landmark_creator.h"
+#include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/system.h"
 #include "ply_slam/tracking/tracker.h"
 #include "shared_data.h"
@@ -17,28 +20,60 @@
 namespace ply_slam {
 namespace {
 
+// A system and, with MappingMode::kApart, the mapping side it hands its keyframes to, run as two
+// processes would run them (without the wire): each update followed before the next frame.
+class Run {
+ public:
+  Run(const SystemConfig& config, MappingMode mode) : system(config, mode) {
+    if (mode != MappingMode::kApart) return;
+    mapping_ = std::make_unique<MappingSide>(config, true, true);
+    system.setJobSink([this](MappingJob job) { jobs_.push_back(std::move(job)); });
+  }
+  FrameResult process(const RgbdImages& images) {
+    FrameResult result = system.process(images);
+    for (; !jobs_.empty(); jobs_.pop_front())
+      system.followMapUpdate(*mapping_->mapKeyFrame(jobs_.front()).map_update);
+    return result;
+  }
+  System system;
+
+ private:
+  std::unique_ptr<MappingSide> mapping_;
+  std::deque<MappingJob> jobs_;
+};
+
 // Tracks fr1_xyz_37 with the lens covered for frames 10..14.
-void expectRecoveryAfterBlankFrames(const std::string& folder, const SystemConfig& config) {
+void expectRecoveryAfterBlankFrames(const std::string& folder, const SystemConfig& config,
+                                    MappingMode mode = MappingMode::kInline) {
   const TumSequence sequence(folder);
   ASSERT_GE(sequence.size(), 30u);
-  System system(config);
+  Run run(config, mode);
+  System& system = run.system;
 
   for (size_t i = 0; i < 10; ++i) {
-    const FrameResult r = system.process(sequence.load(i, config.camera.depth_factor));
+    const FrameResult r = run.process(sequence.load(i, config.camera.depth_factor));
     ASSERT_EQ(r.tracking.state, TrackingState::kOk) << "frame " << i;
   }
   // The lens is covered for frames 10..14: no features, tracking is lost.
   for (size_t i = 10; i < 15; ++i) {
     RgbdImages blank = sequence.load(i, config.camera.depth_factor);
     blank.rgb.setTo(cv::Scalar(0, 0, 0));
-    EXPECT_EQ(system.process(blank).tracking.state, TrackingState::kLost) << "frame " << i;
+    EXPECT_EQ(run.process(blank).tracking.state, TrackingState::kLost) << "frame " << i;
   }
   // Uncovered, about 15 frames (0.1 m) further on: found again against the keyframes.
-  const FrameResult back = system.process(sequence.load(15, config.camera.depth_factor));
+  const FrameResult back = run.process(sequence.load(15, config.camera.depth_factor));
   EXPECT_EQ(back.tracking.state, TrackingState::kOk);
   EXPECT_EQ(back.tracking.method, "reloc");
+  // With loop.enabled (apart too) the keyframes tried come from a place database.
+  if (config.loop.enabled) {
+    const auto keyframes = system.trackerMap().keyFrames();
+    ASSERT_FALSE(keyframes.empty());
+    const std::vector<long> found = system.placeCandidates(keyframes.back()->features.descriptors);
+    ASSERT_FALSE(found.empty());
+    EXPECT_EQ(found.front(), keyframes.back()->id);
+  }
   for (size_t i = 16; i < sequence.size(); ++i)
-    EXPECT_EQ(system.process(sequence.load(i, config.camera.depth_factor)).tracking.state,
+    EXPECT_EQ(run.process(sequence.load(i, config.camera.depth_factor)).tracking.state,
               TrackingState::kOk)
         << "frame " << i;
 
@@ -58,15 +93,24 @@ TEST(Relocalisation, RecoversAfterBlankFrames) {
   expectRecoveryAfterBlankFrames(folder, fr1Config());
 }
 
-// With loop.enabled the keyframes to try come from the place-recognition database.
-TEST(Relocalisation, RecoversThroughThePlaceDatabase) {
+// With loop.enabled the keyframes to try come from a place-recognition database: the mapping
+// side's, or apart (that database in another process) the tracker's own.
+void expectRecoveryThroughThePlaceDatabase(MappingMode mode) {
   const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
   PLY_SLAM_REQUIRE_SHARED(folder);
   PLY_SLAM_REQUIRE_VOCABULARY(defaultVocabularyPath(DescriptorKind::kOrb));
   PLY_SLAM_REQUIRE_VOCABULARY(defaultVocabularyPath(DescriptorKind::kLbd));
   SystemConfig config = fr1Config();
   config.loop.enabled = true;
-  expectRecoveryAfterBlankFrames(folder, config);
+  expectRecoveryAfterBlankFrames(folder, config, mode);
+}
+
+TEST(Relocalisation, RecoversThroughThePlaceDatabase) {
+  expectRecoveryThroughThePlaceDatabase(MappingMode::kInline);
+}
+
+TEST(Relocalisation, RecoversApartThroughTheTrackersOwnPlaceDatabase) {
+  expectRecoveryThroughThePlaceDatabase(MappingMode::kApart);
 }
 
 // A database that offers no keyframe: relocalisation has nothing to try and stays lost, so the

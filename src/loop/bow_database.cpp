@@ -90,4 +90,15 @@ std::vector<BowCandidate> BowDatabase::query(const BowVector& points, const BowV
   return out;
 }
 
+std::vector<long> BowDatabase::rankByPoints(const BowVector& points, size_t max_results) const {
+  std::vector<BowCandidate> found = query(points, BowVector{}, 0);
+  // query ranks by S_p + S_l; an image without lines is ranked by its points alone.
+  std::stable_sort(found.begin(), found.end(), [](const BowCandidate& a, const BowCandidate& b) {
+    return a.point_score > b.point_score;
+  });
+  std::vector<long> ids;
+  for (size_t i = 0; i < found.size() && i < max_results; ++i) ids.push_back(found[i].keyframe_id);
+  return ids;
+}
+
 }  // namespace ply_slam

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <climits>
 
-#include "ply_slam/features/best_two.h"
 #include "ply_slam/common/hamming.h"
+#include "ply_slam/features/best_two.h"
 
 namespace ply_slam {
 

@@ -172,15 +172,7 @@ LoopDetection LoopDetector::detect(long query_id) {
 
 std::vector<long> LoopDetector::recognise(const cv::Mat& orb_descriptors,
                                           size_t max_results) const {
-  std::vector<BowCandidate> found =
-      database_.query(orb_.transform(orb_descriptors), BowVector{}, 0);
-  // The database ranks by S_p + S_l; an image without lines is ranked by its points alone.
-  std::stable_sort(found.begin(), found.end(), [](const BowCandidate& a, const BowCandidate& b) {
-    return a.point_score > b.point_score;
-  });
-  std::vector<long> ids;
-  for (size_t i = 0; i < found.size() && i < max_results; ++i) ids.push_back(found[i].keyframe_id);
-  return ids;
+  return database_.rankByPoints(orb_.transform(orb_descriptors), max_results);
 }
 
 std::vector<PutativeMatch> LoopDetector::putativeMatches(const Entry& query,

@@ -18,7 +18,6 @@ namespace ply_slam {
 namespace {
 
 // Keyframes relocalisation tries, most similar first (ORB-SLAM tries those of its BoW query).
-constexpr size_t kRelocalisationCandidates = 10;
 
 }  // namespace
 
@@ -47,12 +46,14 @@ System::System(const SystemConfig& config, MappingMode mode)
     line_extractor_ = std::make_unique<LineExtractor>(config_.lines);
     line_fitter_ = std::make_unique<LineFitter>(config_.lines, config_.camera);
   }
+  if (!mapping_ && config_.loop.enabled)
+    places_ = std::make_unique<RelocalisationDatabase>(
+        RelocalisationDatabase::fromOptions(config_.loop, config_.dynamic.mask_dilation_px));
+  if (places_ || (mapping_ && mapping_->mapper().recognisesPlaces()))
+    tracker_.setPlaceCandidates(
+        [this](const Frame& frame) { return placeCandidates(frame.features.descriptors); });
   if (!mapping_) return;  // kApart
   Mapper& mapper = mapping_->mapper();
-  if (mapper.recognisesPlaces())
-    tracker_.setPlaceCandidates([this](const Frame& frame) {
-      return mapping_->mapper().recognise(frame.features.descriptors, kRelocalisationCandidates);
-    });
   // In the split modes the tracker moves when its copy follows the update that says so; else
   // the mapper tells it, holding the map's lock: the tracker is between two frames.
   if (!tracking_map_)
@@ -190,6 +191,7 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
   }
   job.reference_keyframe = reference_id_.load();
   if (!mapping_) {  // kApart
+    if (places_) places_->add(*job.keyframe, job.segmentation);
     job_sink_(std::move(job));
     return;
   }
@@ -220,6 +222,14 @@ void System::followMapUpdate(const MapUpdate& update) {
   // poses of both still agree.
   reanchorTrackedFrames(update.erased_keyframes);
   followMapper(update);
+  if (places_)
+    for (long id : update.erased_keyframes) places_->remove(id);
+}
+
+std::vector<long> System::placeCandidates(const cv::Mat& orb_descriptors) const {
+  if (places_) return places_->recognise(orb_descriptors, kRelocalisationCandidates);
+  if (!mapping_) return {};
+  return mapping_->mapper().recognise(orb_descriptors, kRelocalisationCandidates);
 }
 
 void System::followMapper(const MapUpdate& update) {

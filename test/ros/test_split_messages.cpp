@@ -9,9 +9,11 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
+#include "default_vocabularies.h"
 #include "map_equality.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/split_messages.h"
+#include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/system.h"
 #include "replica_run.h"
@@ -27,6 +29,7 @@ using test::throughWire;
 
 std::string xyzFolder() { return test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37"); }
 std::string rpyFolder() { return test::sharedPath("data/tum/rgbd_dataset_freiburg1_rpy_150_349"); }
+std::string walkersFolder() { return test::sharedPath("data/dynamic/fr1_rpy_150_349_walkers"); }
 SystemConfig fr1Config() {
   return loadConfig(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml");
 }
@@ -371,6 +374,50 @@ TEST(SplitMessages, ATrackerApartNeedsAJobSinkAndHasNoMapToSave) {
   EXPECT_THROW(apart.saveMap("/tmp/never"), std::logic_error);
   EXPECT_THROW(apart.loadMap("/tmp/never"), std::logic_error);
   EXPECT_EQ(apart.loopCounts(), nullptr);
+}
+
+// Apart, the tracker relocalises through a place database of its own (the mapping side's is in
+// the other process): it keeps the words the mapping side keeps (features on people left out)
+// and gives the same candidates, here for every keyframe's image of the walkers sequence.
+TEST(SplitMessages, ATrackerApartRecognisesPlacesAsTheMappingSide) {
+  PLY_SLAM_REQUIRE_SHARED(walkersFolder());
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
+  SystemConfig config = fr1Config();
+  config.loop.enabled = true;
+  const TumSequence sequence(walkersFolder());
+  MaskFolderSegmenter masks(walkersFolder());
+  System apart(config, MappingMode::kApart);
+  MappingSide mapping(config, true, true);
+  const OrbExtractor scales_of(config.orb);
+  std::deque<MappingJob> jobs;
+  apart.setJobSink([&jobs](MappingJob job) { jobs.push_back(std::move(job)); });
+  size_t with_people = 0, culled = 0;
+  for (size_t i = 0; i < sequence.size() && i < 120; ++i) {
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    apart.process(images, masks.segment(images));
+    for (; !jobs.empty(); jobs.pop_front()) {
+      with_people += !jobs.front().segmentation.instances.empty();
+      const MappingJob job = fromMsg(throughWire(toMsg(jobs.front(), "map")),
+                                     {&scales_of.scales(), images.rgb.size()});
+      const MappedKeyFrame mapped = mapping.mapKeyFrame(job);
+      apart.followMapUpdate(fromMsg(throughWire(toMsg(*mapped.map_update, "map"))));
+      culled += mapped.map_update->erased_keyframes.size();
+    }
+  }
+  const auto keyframes = mapping.map().keyFrames();
+  std::cout << keyframes.size() << " keyframes (" << culled << " culled), " << with_people
+            << " handed over with people in them\n";
+  EXPECT_GE(with_people, 5u);
+  size_t itself_first = 0;
+  for (const auto& kf : keyframes) {
+    const std::vector<long> found = apart.placeCandidates(kf->features.descriptors);
+    EXPECT_EQ(found, mapping.mapper().recognise(kf->features.descriptors,
+                                                System::kRelocalisationCandidates))
+        << "keyframe " << kf->id;
+    itself_first += !found.empty() && found.front() == kf->id;
+  }
+  EXPECT_GE(itself_first, keyframes.size() * 9 / 10);
 }
 
 }  // namespace

@@ -44,6 +44,9 @@ class BowDatabase {
   // accepts, best first by S_p + S_l; at most max_results of them (0 = all).
   std::vector<BowCandidate> query(const BowVector& points, const BowVector& lines,
                                   size_t max_results, const Exclude& exclude = nullptr) const;
+  // Relocalisation: the keyframes sharing a point word with an image's bag, most similar (S_p)
+  // first, at most max_results of them; none excluded.
+  std::vector<long> rankByPoints(const BowVector& points, size_t max_results) const;
 
  private:
   struct Posting {

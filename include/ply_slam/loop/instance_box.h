@@ -4,7 +4,6 @@
 #include <string>
 #include <vector>
 
-
 namespace ply_slam {
 
 // An object instance as loop detection sees it: its class and its image box (pixels).

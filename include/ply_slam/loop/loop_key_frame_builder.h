@@ -12,10 +12,9 @@ namespace ply_slam {
 
 // What place recognition keeps of a keyframe, from the packet the mapping side receives: its
 // ORB features with depth, the LBD descriptors of the lines in its image and its instances'
-// boxes. Features and lines on instances of moving classes (LoopOptions::dynamic_classes) are
-// left out: a person's features match the same person anywhere. Lines are described whether or
-// not tracking uses them (LineOptions::enabled): the point-line score needs them, and once per
-// keyframe they cost what tracking with lines costs on every frame.
+// boxes. Features and lines on instances of moving classes are left out (movingPixels). Lines
+// are described whether or not tracking uses them (LineOptions::enabled): the point-line score
+// needs them, and once per keyframe they cost what tracking with lines costs on every frame.
 class LoopKeyFrameBuilder {
  public:
   LoopKeyFrameBuilder(const LineOptions& lines, const PinholeCamera& camera,
@@ -26,10 +25,8 @@ class LoopKeyFrameBuilder {
   LoopKeyFrame build(const KeyFramePacket& packet, cv::Mat* movers = nullptr) const;
 
  private:
-  // The box of each labelled instance, and the pixels of those of moving classes, dilated
-  // (left empty when none).
-  void readLabels(const KeyFramePacket& packet, std::vector<InstanceBox>& boxes,
-                  cv::Mat& movers) const;
+  // The box of each labelled instance.
+  static std::vector<InstanceBox> boxesOf(const KeyFramePacket& packet);
   // LBD descriptors of the image's lines whose middle is off the movers.
   cv::Mat describeLines(const cv::Mat& rgb, const cv::Mat& movers) const;
 

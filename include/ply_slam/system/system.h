@@ -18,6 +18,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/loop/relocalisation_database.h"
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"
@@ -126,6 +127,11 @@ class System {
   Trajectory keyFrameTrajectory() const;
   // Every keyframe of the map as it is now, without images (for a mapper that restarted).
   std::vector<KeyFramePacket> sparseKeyFramePackets() const;
+  // Keyframes to relocalise an image with these ORB descriptors against, most similar first, at
+  // most kRelocalisationCandidates (loop.enabled: the mapping side's place database; kApart a
+  // database of the tracker's own that keeps the same words); empty without place recognition.
+  static constexpr size_t kRelocalisationCandidates = 10;
+  std::vector<long> placeCandidates(const cv::Mat& orb_descriptors) const;
   // Loop closure's counts; null without loop.enabled.
   const LoopClosureCounts* loopCounts() const {
     return mapping_ ? mapping_->mapper().loopCounts() : nullptr;
@@ -234,6 +240,9 @@ class System {
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
   std::set<long> unmapped_anchors_;
   JobSink job_sink_;  // kApart
+  // kApart with loop.enabled: the keyframes' ORB words, for relocalisation (the mapping side's
+  // database is in another process).
+  std::unique_ptr<RelocalisationDatabase> places_;
   // Last: joined before anything it uses goes. Null with kInline.
   std::unique_ptr<MappingThread> mapping_thread_;
 };
