@@ -5,6 +5,7 @@
 #include "ply_slam/loop/moving_pixels.h"
 
 namespace ply_slam {
+
 LoopKeyFrameBuilder::LoopKeyFrameBuilder(const LineOptions& lines, const PinholeCamera& camera,
                                          const LoopOptions& loop, int mask_dilation_px)
     : lines_(lines),

@@ -202,8 +202,11 @@ void Map::note(const MapJournal::Entry& entry) {
 
 void Map::replay(const MapJournal& journal) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto keyframes = byId(keyframes_);
-  const auto points = byId(points_);
+  replayLocked(journal, byId(keyframes_), byId(points_));
+}
+
+void Map::replayLocked(const MapJournal& journal, const KeyFramesById& keyframes,
+                       const PointsById& points) {
   for (const auto& e : journal.entries) {
     const auto kf = keyframes.find(e.keyframe);
     const auto point = points.find(e.point);
@@ -223,14 +226,12 @@ void Map::replay(const MapJournal& journal) {
   }
 }
 
-void Map::relinkLocked(const MapUpdate::KeyFrameLinks& links) {
-  if (links.keyframe < 0) return;
-  const auto kf = std::find_if(keyframes_.begin(), keyframes_.end(),
-                               [&](const auto& k) { return k->id == links.keyframe; });
-  if (kf == keyframes_.end()) return;
-  KeyFrame& keyframe = **kf;
+void Map::relinkLocked(const MapUpdate::KeyFrameLinks& links, const KeyFramesById& keyframes,
+                       const PointsById& points) {
+  const auto kf = keyframes.find(links.keyframe);
+  if (kf == keyframes.end()) return;
+  KeyFrame& keyframe = *kf->second;
   std::vector<std::shared_ptr<MapPoint>> wanted(keyframe.map_points.size());
-  const auto points = byId(points_);
   for (const auto& [index, id] : links.points)
     if (const auto p = points.find(id); p != points.end() && index < wanted.size())
       wanted[index] = p->second;
@@ -253,20 +254,21 @@ void Map::addObservationFollowed(KeyFrame& keyframe, size_t index,
 }
 
 void Map::apply(const MapUpdate& update) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    relinkLocked(update.replayed);
-  }
-  replay(update.journal);
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto keyframes = byId(keyframes_);
+  // Points stay in points_ until removeBad below (erased ones marked bad): one index serves.
+  const auto points = byId(points_);
+  {
+    const auto followed = byId(keyframes_);
+    relinkLocked(update.replayed, followed, points);
+    replayLocked(update.journal, followed, points);
+  }
+  const auto keyframes = byId(keyframes_);  // without those the journal erased
   for (const auto& pose : update.keyframes)
     if (const auto kf = keyframes.find(pose.id); kf != keyframes.end()) {
       kf->second->T_cw = pose.T_cw;
       const auto parent = keyframes.find(pose.parent);
       kf->second->parent = parent != keyframes.end() ? parent->second.get() : nullptr;
     }
-  const auto points = byId(points_);
   for (const auto& values : update.points)
     if (const auto p = points.find(values.id); p != points.end()) setValues(*p->second, values);
   const auto lines = byId(lines_);

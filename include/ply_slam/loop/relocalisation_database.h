@@ -28,7 +28,6 @@ class RelocalisationDatabase {
   void add(const KeyFrame& keyframe, const KeyFrameSegmentation& segmentation);
   // Forgets a keyframe (erased from the map); unknown ids are ignored.
   void remove(long id);
-  size_t size() const { return database_.size(); }
   // The keyframes whose ORB words an image's descriptors share, most similar first, at most
   // max_results.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;

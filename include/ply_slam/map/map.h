@@ -91,12 +91,17 @@ class Map {
   void addObservationLocked(KeyFrame& keyframe, size_t index,
                             const std::shared_ptr<MapPoint>& point);
   void removeObservationLocked(KeyFrame& keyframe, size_t index);
+  using KeyFramesById = std::unordered_map<long, std::shared_ptr<KeyFrame>>;
   using PointsById = std::unordered_map<long, std::shared_ptr<MapPoint>>;
   using LinesById = std::unordered_map<long, std::shared_ptr<MapLine>>;
   // apply: erases what the update says left the mapping side's map and is still here.
   void eraseGone(const MapUpdate& update, const PointsById& points, const LinesById& lines);
+  // replay with the maps' indexes by id made (apply makes them once for several steps).
+  void replayLocked(const MapJournal& journal, const KeyFramesById& keyframes,
+                    const PointsById& points);
   // apply: the keyframe's point links made exactly `links` (points this map lacks: no link).
-  void relinkLocked(const MapUpdate::KeyFrameLinks& links);
+  void relinkLocked(const MapUpdate::KeyFrameLinks& links, const KeyFramesById& keyframes,
+                    const PointsById& points);
   // replay's link: as addObservationLocked, over whatever link the keyframe holds there.
   void addObservationFollowed(KeyFrame& keyframe, size_t index,
                               const std::shared_ptr<MapPoint>& point);
