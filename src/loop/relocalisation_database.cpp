@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "ply_slam/loop/moving_pixels.h"
+#include "ply_slam/loop/vocabulary_identity.h"
 #include "ply_slam/loop/vocabulary_path.h"
 
 namespace ply_slam {
@@ -10,6 +11,8 @@ namespace ply_slam {
 RelocalisationDatabase::RelocalisationDatabase(BinaryVocabulary orb, const LoopOptions& loop,
                                                int mask_dilation_px)
     : orb_(std::move(orb)),
+      orb_identity_(
+          vocabularyIdentity(orb_, vocabularyPath(loop.orb_vocabulary, DescriptorKind::kOrb))),
       database_(orb_.numWords(), 0),
       mover_classes_(loop.dynamic_classes),
       mask_dilation_px_(mask_dilation_px) {}
@@ -30,6 +33,15 @@ void RelocalisationDatabase::add(const KeyFrame& keyframe,
   KeyFrameWords words;
   words.points =
       orb_.transform(keptRows(features.descriptors, offMask(features.undistorted, movers)));
+  database_.add(keyframe.id, std::move(words));
+}
+
+void RelocalisationDatabase::addLoaded(const KeyFrame& keyframe, const KeyFramePlace& place) {
+  const FrameFeatures& features = keyframe.features;
+  std::vector<bool> kept(features.size());
+  for (size_t i = 0; i < kept.size(); ++i) kept[i] = place.uses(i);
+  KeyFrameWords words;
+  words.points = orb_.transform(keptRows(features.descriptors, kept));
   database_.add(keyframe.id, std::move(words));
 }
 

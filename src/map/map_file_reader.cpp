@@ -333,7 +333,9 @@ MapFileContents MapFileReader::read(const std::string& path, const MapFileSetup&
     const MapFileSetup stored = setup(in);
     const std::string differs = mismatch(stored, expected);
     if (!differs.empty()) fail(path, differs);
-    return decode(in, stored, scales);
+    MapFileContents contents = decode(in, stored, scales);
+    contents.checksum = ByteReader::word(bytes.data() + bytes.size() - 8, 8);
+    return contents;
   } catch (const Inconsistent& e) {
     fail(path, std::string("inconsistent content: ") + e.what());
   } catch (const ByteReader::Truncated& e) {

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "ply_slam/loop/vocabulary_file.h"
+#include "ply_slam/loop/vocabulary_identity.h"
 #include "ply_slam/loop/vocabulary_path.h"
 
 namespace ply_slam {
@@ -163,7 +163,7 @@ void LoopCloser::addLoadedKeyFrame(const KeyFrame& keyframe, const KeyFramePlace
   const FrameFeatures& f = keyframe.features;
   kf.orb_descriptors = cv::Mat(0, f.descriptors.cols, f.descriptors.type());
   for (size_t i = 0; i < f.size(); ++i) {
-    if (i < place.used_keypoints.size() && !place.used_keypoints[i]) continue;
+    if (!place.uses(i)) continue;
     kf.keypoints.push_back(f.undistorted[i]);
     kf.depth.push_back(f.depth[i]);
     kf.orb_descriptors.push_back(f.descriptors.row(static_cast<int>(i)));
@@ -174,20 +174,12 @@ void LoopCloser::addLoadedKeyFrame(const KeyFrame& keyframe, const KeyFramePlace
   detector_.addKeyFrame(std::move(kf));
 }
 
-namespace {
-
-MapVocabulary identify(const BinaryVocabulary& vocabulary, const std::string& file) {
-  return {file, VocabularyFile::checksum(vocabulary.data()), vocabulary.numWords()};
-}
-
-}  // namespace
-
 MapVocabulary LoopCloser::orbVocabulary() const {
-  return identify(detector_.orbVocabulary(), orb_file_);
+  return vocabularyIdentity(detector_.orbVocabulary(), orb_file_);
 }
 
 MapVocabulary LoopCloser::lbdVocabulary() const {
-  return identify(detector_.lbdVocabulary(), lbd_file_);
+  return vocabularyIdentity(detector_.lbdVocabulary(), lbd_file_);
 }
 
 }  // namespace ply_slam

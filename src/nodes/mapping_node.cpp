@@ -8,8 +8,7 @@ int main(int argc, char** argv) {
   return ply_slam::runNode(
       argc, argv, "mapping_node", [](ros::NodeHandle& nh, ros::NodeHandle& pnh) {
         ply_slam::MappingNodeOptions options = ply_slam::mappingNodeOptionsFromParams(pnh);
-        ply_slam::MappingBackEnd back_end =
-            ply_slam::MappingBackEnd::fromConfig(options.config, options.map_keyframes);
+        ply_slam::MappingBackEnd back_end = ply_slam::MappingBackEnd::fromOptions(options);
         ply_slam::MappingNode node(nh, pnh, std::move(options), std::move(back_end));
         ros::spin();
       });

@@ -1,15 +1,25 @@
 #include "ply_slam/ros/mapping_back_end.h"
 
+#include <filesystem>
+
 #include "ply_slam/features/orb_extractor.h"
+#include "ply_slam/system/system.h"
 
 namespace ply_slam {
 
-MappingBackEnd MappingBackEnd::fromConfig(const SystemConfig& config, bool map_keyframes) {
+MappingBackEnd MappingBackEnd::fromOptions(const MappingNodeOptions& options) {
+  const SystemConfig& config = options.config;
   MappingBackEnd back_end;
-  if (map_keyframes) {
+  if (options.map_keyframes) {
     // On its own thread, as tracking_node's thread: a global BA is solved beside the keyframes.
     back_end.mapping = std::make_unique<MappingSide>(config, true, false);
-    back_end.orb_scales = OrbExtractor(config.orb).scales();
+    back_end.orb_scales =
+        std::make_shared<const std::vector<double>>(OrbExtractor(config.orb).scales());
+    // The tracker apart loads the same file into its copy; each job says which it loaded.
+    if (!options.map.empty())
+      back_end.mapping->loadMap(
+          (std::filesystem::path(options.map) / System::kMapFileName).string(),
+          back_end.orb_scales.get());
   }
   if (!config.dense.enabled) return back_end;
   back_end.dense = std::make_unique<DenseMappingWorker>(config.dense);

@@ -23,6 +23,7 @@
 #include "ply_slam/ros/grid_map_message.h"
 #include "ply_slam/ros/sparse_map_messages.h"
 #include "ply_slam/ros/split_messages.h"
+#include "ply_slam/system/key_frame_packet_builder.h"
 #include "ply_slam/system/system.h"
 
 namespace ply_slam {
@@ -32,8 +33,8 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
     : nh_(nh),
       pnh_(pnh),
       options_(std::move(options)),
-      mapping_(std::move(back_end.mapping)),
       orb_scales_(std::move(back_end.orb_scales)),
+      mapping_(std::move(back_end.mapping)),
       dense_(std::move(back_end.dense)),
       grid_builder_(std::move(back_end.grid_builder)),
       tf_listener_(tf_buffer_) {
@@ -68,6 +69,7 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
 
   pose_sub_ = nh_.subscribe(options_.pose_topic, 100, &MappingNode::onPose, this);
   if (mapping_) {
+    if (mapping_->loadedMap() != 0) keepLoadedMap();
     mapping_thread_ = std::make_unique<MappingThread>(
         [this](const MappingJob& job) { return mapping_->mapKeyFrame(job); });
     update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 100);
@@ -104,6 +106,20 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
                                    << (options_.odom_frame.empty()
                                            ? options_.world_frame + " -> " + options_.camera_frame
                                            : options_.map_frame + " -> " + options_.odom_frame));
+}
+
+// The map the mapping side loaded is this node's copy from the start; the dense maps lack its
+// keyframes (a map file holds no images).
+void MappingNode::keepLoadedMap() {
+  const std::vector<KeyFramePacket> loaded =
+      sparseKeyFramePackets(mapping_->map(), options_.config.camera);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    store_.restore(loaded);
+    dense_missing_ = dense_ ? loaded.size() : 0;
+  }
+  ROS_INFO_STREAM("mapping_node: maps on from " << options_.map << ": " << loaded.size()
+                                                << " keyframes");
 }
 
 void MappingNode::onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg) {
@@ -188,8 +204,9 @@ void MappingNode::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) {
   const ThreadCpuStopwatch cpu;
   MappingJob job;
   try {
-    job = fromMsg(*msg, JobReceiver{&orb_scales_, cv::Size(options_.config.camera.width,
-                                                           options_.config.camera.height)});
+    job = fromMsg(*msg, JobReceiver{orb_scales_.get(), cv::Size(options_.config.camera.width,
+                                                                options_.config.camera.height)});
+    mapping_->checkJob(job);
   } catch (const std::exception& e) {
     bad_input_.report("mapping_job", e.what());
     return;
@@ -308,7 +325,8 @@ std::string MappingNode::partialReason(bool dense) const {
     add("missed " + std::to_string(update_sequence_.missed()) + " map updates");
   if (dense && dense_missing_ > 0)
     add("the dense maps lack " + std::to_string(dense_missing_) +
-        " keyframes whose images came while mapping_node was not running");
+        " keyframes without images (loaded from a map file, or sent while mapping_node was not "
+        "running)");
   return reason;
 }
 

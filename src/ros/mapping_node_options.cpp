@@ -1,9 +1,11 @@
 #include "ply_slam/ros/mapping_node_options.h"
 
+#include <filesystem>
 #include <vector>
 
 #include "ply_slam/ros/config_from_params.h"
 #include "ply_slam/ros/node_params.h"
+#include "ply_slam/system/system.h"
 
 namespace ply_slam {
 namespace {
@@ -49,6 +51,10 @@ MappingNodeOptions mappingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "tracker_save_map_service", &o.tracker_save_map_service);
   readParam(pnh, "map_keyframes", &o.map_keyframes);
   readParam(pnh, "mapping_job_topic", &o.mapping_job_topic);
+  // Said at the start, as the tracker says it: the mapping side apart loads the map file.
+  const std::filesystem::path map_file = std::filesystem::path(o.map) / System::kMapFileName;
+  if (o.map_keyframes && !o.map.empty() && !std::filesystem::is_regular_file(map_file))
+    badParam("map", "has no map file " + map_file.string());
   return o;
 }
 

@@ -258,6 +258,7 @@ MappingJobMsg toMsg(const MappingJob& job, const std::string& world_frame) {
   m.report = toMsg(job.report);
   m.followed_updates = static_cast<uint64_t>(job.followed_updates);
   m.reference_keyframe = job.reference_keyframe;
+  m.loaded_map = job.loaded_map;
   m.depth_stamp = job.images.depth_stamp;
   m.rgb = toImageMsg(job.images.rgb, enc::BGR8);
   m.depth = toImageMsg(job.images.depth, enc::TYPE_32FC1);
@@ -274,6 +275,7 @@ MappingJob fromMsg(const MappingJobMsg& m, const JobReceiver& receiver) {
   checkLinks(job.report, *job.keyframe);
   job.followed_updates = static_cast<long>(m.followed_updates);
   job.reference_keyframe = m.reference_keyframe;
+  job.loaded_map = m.loaded_map;
   job.images.stamp = job.keyframe->stamp;
   job.images.depth_stamp = finite(m.depth_stamp, "the depth stamp");
   const cv::Size& camera = receiver.image_size;

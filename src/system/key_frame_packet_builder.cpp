@@ -53,6 +53,13 @@ KeyFrameSegmentation segmentationOf(const std::vector<Instance>& instances,
   return segmentation;
 }
 
+std::vector<KeyFramePacket> sparseKeyFramePackets(const Map& map, const PinholeCamera& camera) {
+  std::lock_guard<std::mutex> lock(map.updateMutex());
+  std::vector<KeyFramePacket> packets;
+  for (const auto& kf : map.keyFrames()) packets.push_back(makeSparseKeyFramePacket(*kf, camera));
+  return packets;
+}
+
 KeyFramePacket makeKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera,
                                   const RgbdImages& images,
                                   const KeyFrameSegmentation& segmentation) {

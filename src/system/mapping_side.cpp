@@ -2,8 +2,11 @@
 
 #include <filesystem>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/map/map_file_reader.h"
 #include "ply_slam/map/map_file_writer.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
@@ -12,16 +15,46 @@ namespace ply_slam {
 MappingSide::MappingSide(const SystemConfig& config, bool follows_reports, bool wait_for_global_ba)
     : camera_(config.camera),
       follows_reports_(follows_reports),
-      mapper_(config.camera, mapperOptions(config), map_, wait_for_global_ba) {
-  file_setup_.camera = config.camera;
-  file_setup_.orb_levels = config.orb.num_levels;
-  file_setup_.orb_scale_factor = config.orb.scale_factor;
-  file_setup_.orb_vocabulary = mapper_.orbVocabulary();
-  file_setup_.lbd_vocabulary = mapper_.lbdVocabulary();
+      mapper_(config.camera, mapperOptions(config), map_, wait_for_global_ba),
+      file_setup_(fileSetup(config, mapper_.orbVocabulary(), mapper_.lbdVocabulary())) {
   // Whoever tracks in a copy moves along when it follows the update that says so.
   if (follows_reports_)
     mapper_.setCorrectionListener(
         [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
+}
+
+MapFileSetup MappingSide::fileSetup(const SystemConfig& config, MapVocabulary orb,
+                                    MapVocabulary lbd) {
+  MapFileSetup setup;
+  setup.camera = config.camera;
+  setup.orb_levels = config.orb.num_levels;
+  setup.orb_scale_factor = config.orb.scale_factor;
+  setup.orb_vocabulary = std::move(orb);
+  setup.lbd_vocabulary = std::move(lbd);
+  return setup;
+}
+
+void MappingSide::loadMap(const std::string& file, const std::vector<double>* scales) {
+  if (map_.numKeyFrames() != 0)
+    throw std::logic_error("MappingSide::loadMap: the map is not empty");
+  MapFileContents loaded = MapFileReader::read(file, file_setup_, scales);
+  map_.adopt(std::move(loaded.keyframes), std::move(loaded.points), std::move(loaded.lines));
+  mapper_.addLoadedKeyFrames(loaded.places);
+  loaded_map_ = loaded.checksum;
+}
+
+void MappingSide::checkJob(const MappingJob& job) const {
+  if (!job.keyframe || job.loaded_map == loaded_map_) return;
+  auto name = [](uint64_t checksum) {
+    if (checksum == 0) return std::string("no map file (an empty map)");
+    std::ostringstream text;
+    text << "the map file with checksum " << std::hex << checksum;
+    return text.str();
+  };
+  throw std::invalid_argument("keyframe " + std::to_string(job.keyframe->id) +
+                              " was made by a tracker that started from " + name(job.loaded_map) +
+                              ", this mapping side from " + name(loaded_map_) +
+                              ": both must load the same map");
 }
 
 void MappingSide::saveMap(const std::string& file) const {
@@ -32,6 +65,7 @@ void MappingSide::saveMap(const std::string& file) const {
 }
 
 MappedKeyFrame MappingSide::mapKeyFrame(const MappingJob& job) {
+  checkJob(job);
   Stopwatch mapping;
   MappedKeyFrame out;
   MapUpdate::KeyFrameLinks replayed;

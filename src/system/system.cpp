@@ -10,17 +10,12 @@
 #include <utility>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/loop/vocabulary_identity.h"
 #include "ply_slam/map/map_file_reader.h"
 #include "ply_slam/mapping/carry_along.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
-namespace {
-
-// Keyframes relocalisation tries, most similar first (ORB-SLAM tries those of its BoW query).
-
-}  // namespace
-
 System::System(const SystemConfig& config, MappingMode mode)
     : config_(config),
       extractor_(config.orb),
@@ -190,6 +185,7 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
     job.followed_updates = std::exchange(followed_at_last_keyframe_, updates_followed_);
   }
   job.reference_keyframe = reference_id_.load();
+  job.loaded_map = loaded_map_;
   if (!mapping_) {  // kApart
     if (places_) places_->add(*job.keyframe, job.segmentation);
     job_sink_(std::move(job));
@@ -372,11 +368,7 @@ Trajectory System::cameraTrajectory() const {
 }
 
 std::vector<KeyFramePacket> System::sparseKeyFramePackets() const {
-  std::lock_guard<std::mutex> lock(map().updateMutex());
-  std::vector<KeyFramePacket> packets;
-  for (const auto& kf : map().keyFrames())
-    packets.push_back(makeSparseKeyFramePacket(*kf, config_.camera));
-  return packets;
+  return ply_slam::sparseKeyFramePackets(map(), config_.camera);
 }
 
 void System::saveMap(const std::string& folder) const {
@@ -385,28 +377,41 @@ void System::saveMap(const std::string& folder) const {
 }
 
 void System::loadMap(const std::string& folder, bool localisation_only) {
-  if (!mapping_) throw std::logic_error("System::loadMap: not with the mapping side elsewhere");
-  if (next_frame_id_ != 0 || mapping_->map().numKeyFrames() != 0)
+  if (next_frame_id_ != 0 || trackingMap().numKeyFrames() != 0)
     throw std::logic_error("System::loadMap: a map is loaded before the first frame");
-  // Read and checked whole before anything changes: a bad file leaves the system as it was.
   const std::string file = (std::filesystem::path(folder) / kMapFileName).string();
-  const MapFileSetup& setup = mapping_->mapFileSetup();
-  MapFileContents loaded = MapFileReader::read(file, setup, &extractor_.scales());
-  // The split modes: the tracker's copy is a map of its own, from the same file.
-  std::optional<MapFileContents> tracker_copy;
-  if (tracking_map_) tracker_copy = MapFileReader::read(file, setup, &extractor_.scales());
-  long last_frame = -1;
-  for (const auto& kf : loaded.keyframes) last_frame = std::max(last_frame, kf->frame_id);
-  mapping_->map().adopt(std::move(loaded.keyframes), std::move(loaded.points),
-                        std::move(loaded.lines));
-  if (tracker_copy)
-    tracking_map_->adopt(std::move(tracker_copy->keyframes), std::move(tracker_copy->points),
-                         std::move(tracker_copy->lines));
-  mapping_->mapper().addLoadedKeyFrames(loaded.places);
+  // Read and checked whole before anything changes: a bad file leaves the system as it was. The
+  // tracker's copy (split modes, kApart) is a map of its own, from the same file.
+  std::optional<MapFileContents> copy;
+  if (tracking_map_) copy = MapFileReader::read(file, mapFileSetup(), &extractor_.scales());
+  if (mapping_) mapping_->loadMap(file, &extractor_.scales());
+  loaded_map_ = copy ? copy->checksum : mapping_->loadedMap();
+  if (copy) adoptTrackerCopy(std::move(*copy));
   tracker_.startLost();
   tracker_.setLocalisationOnly(localisation_only);
   // Keyframes remember the frame they were made from; new frames must not repeat those ids.
-  next_frame_id_ = last_frame + 1;
+  for (const auto& kf : trackingMap().keyFrames())
+    next_frame_id_ = std::max(next_frame_id_, kf->frame_id + 1);
+}
+
+MapFileSetup System::mapFileSetup() const {
+  if (mapping_) return mapping_->mapFileSetup();
+  // kApart: the LBD vocabulary is the mapping side's alone; the configured one is named, and
+  // the mapping side checks it as it loads the same file.
+  if (!places_) return MappingSide::fileSetup(config_, {}, {});
+  return MappingSide::fileSetup(
+      config_, places_->orbVocabulary(),
+      configuredVocabularyIdentity(config_.loop.lbd_vocabulary, DescriptorKind::kLbd));
+}
+
+void System::adoptTrackerCopy(MapFileContents copy) {
+  tracking_map_->adopt(std::move(copy.keyframes), std::move(copy.points), std::move(copy.lines));
+  if (!places_) return;
+  const KeyFramePlace none;  // a keyframe without a record: every keypoint
+  for (const auto& kf : tracking_map_->keyFrames()) {
+    const auto place = copy.places.find(kf->id);
+    places_->addLoaded(*kf, place != copy.places.end() ? place->second : none);
+  }
 }
 
 Trajectory System::keyFrameTrajectory() const {

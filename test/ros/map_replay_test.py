@@ -6,7 +6,10 @@ as the run that made the map) within the allowed factor of ply_slam_tum --map on
 frames, and the map file that mapping_node's save_map gets from the tracker loads again. With
 odometry (an odom frame from which this test's static transform says the camera never moved):
 map -> odom in the saved map's frame (its world_in_map.txt, written here as a robot would have),
-and save_map writes that placement again."""
+and save_map writes that placement again. With ~apart the mapping side runs in mapping_node
+(tum_bag.launch mapping_apart:=true): both nodes load the map, the tracker extends it
+(localisation_only false, offline too), mapping_node maps the new keyframes and its save_map
+writes the map file itself, which must hold more keyframes than the one loaded."""
 import math
 import json
 import os
@@ -94,6 +97,8 @@ class MapReplay(unittest.TestCase):
         sequence = support.shared_path(rospy.get_param("~sequence"))
         mapped = rospy.get_param("~mapped_frames")
         factor = rospy.get_param("~ate_factor", 1.5)
+        apart = rospy.get_param("~apart", False)
+        extend = ["--localisation-only", "false"] if apart else []
         work = support.work_dir()
         self.addCleanup(shutil.rmtree, work, True)
         part = os.path.join(work, "part2")
@@ -102,7 +107,8 @@ class MapReplay(unittest.TestCase):
         run_tum("--sequence", sequence, "--out", os.path.join(work, "mapped"), "--max-frames",
                 str(mapped), "--save-map", saved)
         mapping = os.path.join(work, "mapped", "CameraTrajectory.txt")
-        run_tum("--sequence", part, "--out", os.path.join(work, "offline"), "--map", saved)
+        run_tum("--sequence", part, "--out", os.path.join(work, "offline"), "--map", saved,
+                *extend)
         offline = ate_in_map(sequence, os.path.join(work, "offline", "CameraTrajectory.txt"),
                              mapping)
         write_world_in_map(saved)
@@ -118,7 +124,9 @@ class MapReplay(unittest.TestCase):
         tf2_ros.TransformListener(tf_buffer)
         nodes = subprocess.Popen(["roslaunch", "ply_slam", "tum_bag.launch", "bag:=" + bag,
                                   "map:=" + saved, "odom_frame:=odom", "rviz:=false",
-                                  "output:=log", "delay:=5"])
+                                  "output:=log", "delay:=5"] +
+                                 (["mapping_apart:=true", "localisation_only:=false"] if apart
+                                  else []))
         self.addCleanup(lambda: (nodes.send_signal(signal.SIGINT), nodes.wait(30)))
         support.wait_for_nodes()
         self.assertTrue(stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 90),
@@ -152,7 +160,14 @@ class MapReplay(unittest.TestCase):
         run_tum("--sequence", part, "--out", os.path.join(work, "again"), "--max-frames", "3",
                 "--map", folder)
         with open(os.path.join(work, "again", "summary.json")) as f:
-            self.assertEqual(json.load(f)["map"]["first_tracked_frame"], 0)
+            again = json.load(f)["map"]
+        self.assertEqual(again["first_tracked_frame"], 0)
+        if apart:  # mapping_node mapped the tracker's new keyframes into the map it loaded
+            with open(os.path.join(work, "offline", "summary.json")) as f:
+                loaded = json.load(f)["map"]["keyframes_loaded"]
+            print("keyframes: %d loaded, %d in the map mapping_node saved" % (
+                loaded, again["keyframes_loaded"]))
+            self.assertGreater(again["keyframes_loaded"], loaded)
 
 
 if __name__ == "__main__":

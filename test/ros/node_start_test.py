@@ -5,6 +5,7 @@ must run; with three numbers it must stop saying what ~world_in_map needs; eithe
 a config must stop saying so, the same way. Both once died without a word: the exception's
 message was logged after ROS had shut its logging down."""
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -68,6 +69,17 @@ class NodeStart(unittest.TestCase):
         self.assertEqual(mapper.returncode, 1, mapper_output)
         self.assertIn("tracking_node: ~map has no map file /nonexistent/", tracker_output)
         self.assertIn("mapping_node: ~dense_publish_period must be > 0 s", mapper_output)
+
+    def test_mapping_node_apart_names_a_map_file_it_cannot_load(self):
+        folder = support.work_dir()
+        self.addCleanup(shutil.rmtree, folder, True)
+        with open(os.path.join(folder, "map.plymap"), "wb") as f:
+            f.write(b"not a map at all")
+        node = self.start("mapping_node", "bad_map_file", config=CONFIG, map_keyframes=True,
+                          map=folder)
+        output = node.communicate(timeout=30)[0]
+        self.assertEqual(node.returncode, 1, output)
+        self.assertIn(os.path.join(folder, "map.plymap") + ": bad magic", output)
 
     def test_tracking_node_refuses_a_path_period_of_zero(self):
         node = self.start("tracking_node", "bad_path_period", config=CONFIG, path_period=0.0)

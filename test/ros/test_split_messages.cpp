@@ -18,6 +18,7 @@
 #include "ply_slam/system/system.h"
 #include "replica_run.h"
 #include "shared_data.h"
+#include "temp_dir.h"
 #include "wire_test_helpers.h"
 
 namespace ply_slam {
@@ -159,6 +160,7 @@ class JobTest : public ::testing::Test {
     job_.report = someReport(kf->id);
     job_.followed_updates = 17;
     job_.reference_keyframe = 5;
+    job_.loaded_map = 0xfedcba9876543210ULL;
     std::vector<Instance> instances(2);
     instances[0] = {3, "person", 0.9f, cv::Mat::zeros(images_.rgb.size(), CV_8UC1)};
     instances[1] = {8, "chair", 0.5f, cv::Mat::zeros(images_.rgb.size(), CV_8UC1)};
@@ -214,6 +216,7 @@ TEST_F(JobTest, TravelsBitForBit) {
   expectSameReport(back.report, job_.report);
   EXPECT_EQ(back.followed_updates, 17);
   EXPECT_EQ(back.reference_keyframe, 5);
+  EXPECT_EQ(back.loaded_map, 0xfedcba9876543210ULL);
   EXPECT_EQ(back.images.stamp, job_.images.stamp);
   EXPECT_EQ(back.images.depth_stamp, job_.images.depth_stamp);
   EXPECT_TRUE(sameImage(back.images.rgb, images_.rgb));
@@ -363,7 +366,7 @@ TEST(SplitMessages, ATrackerAndAMappingSideApartRunAsTheSplitSystem) {
   EXPECT_LT(worst, 2e-3);
 }
 
-TEST(SplitMessages, ATrackerApartNeedsAJobSinkAndHasNoMapToSave) {
+TEST(SplitMessages, ATrackerApartNeedsAJobSinkAndSavesNoMap) {
   SystemConfig config = fr1Config();
   System apart(config, MappingMode::kApart);
   RgbdImages images;
@@ -372,7 +375,7 @@ TEST(SplitMessages, ATrackerApartNeedsAJobSinkAndHasNoMapToSave) {
   images.depth = cv::Mat::zeros(config.camera.height, config.camera.width, CV_32FC1);
   EXPECT_THROW(apart.process(images), std::logic_error);
   EXPECT_THROW(apart.saveMap("/tmp/never"), std::logic_error);
-  EXPECT_THROW(apart.loadMap("/tmp/never"), std::logic_error);
+  EXPECT_THROW(apart.loadMap("/tmp/never"), std::runtime_error);  // no map file there
   EXPECT_EQ(apart.loopCounts(), nullptr);
 }
 
@@ -418,6 +421,80 @@ TEST(SplitMessages, ATrackerApartRecognisesPlacesAsTheMappingSide) {
     itself_first += !found.empty() && found.front() == kf->id;
   }
   EXPECT_GE(itself_first, keyframes.size() * 9 / 10);
+}
+
+// A saved map loaded apart: the tracker's copy and the mapping side each from the file, as
+// tracking_node and mapping_node with the same ~map. They relocalise and extend it as the split
+// system that loaded it does in one process, bit for bit, and give the same place candidates
+// for the loaded keyframes; a job from a tracker in another map is refused, the side unchanged.
+TEST(SplitMessages, ATrackerAndAMappingSideApartStartFromOneSavedMap) {
+  PLY_SLAM_REQUIRE_SHARED(rpyFolder());
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
+  SystemConfig config = fr1Config();
+  config.loop.enabled = true;
+  const TumSequence sequence(rpyFolder());
+  const TempDir saved;
+  constexpr size_t kMapped = 60, kLater = 140;
+  {
+    System mapper(config);
+    for (size_t i = 0; i < kMapped; ++i)
+      mapper.process(sequence.load(i, config.camera.depth_factor));
+    mapper.saveMap(saved.path().string());
+  }
+  const std::string file = saved.file(System::kMapFileName);
+  System split(config, MappingMode::kSplit), apart(config, MappingMode::kApart);
+  split.loadMap(saved.path().string(), false);
+  apart.loadMap(saved.path().string(), false);
+  const OrbExtractor scales_of(config.orb);
+  MappingSide mapping(config, true, true), empty(config, true, true);
+  mapping.loadMap(file, &scales_of.scales());
+  const size_t loaded = mapping.map().numKeyFrames();
+  ASSERT_GE(loaded, 4u);
+  EXPECT_NE(mapping.loadedMap(), 0u);
+  EXPECT_THROW(mapping.loadMap(file, &scales_of.scales()), std::logic_error);  // not empty
+  for (const auto& kf : mapping.map().keyFrames())
+    EXPECT_EQ(
+        apart.placeCandidates(kf->features.descriptors),
+        mapping.mapper().recognise(kf->features.descriptors, System::kRelocalisationCandidates))
+        << "loaded keyframe " << kf->id;
+
+  std::deque<MappingJob> jobs;
+  apart.setJobSink([&jobs](MappingJob job) { jobs.push_back(std::move(job)); });
+  size_t keyframes = 0, first_tracked = kLater;
+  for (size_t i = kMapped; i < kLater; ++i) {
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    const FrameResult a = split.process(images), b = apart.process(images);
+    ASSERT_EQ(a.tracking.state, b.tracking.state) << "frame " << i;
+    ASSERT_TRUE(a.tracking.T_cw.matrix() == b.tracking.T_cw.matrix()) << "frame " << i;
+    if (b.tracking.state == TrackingState::kOk) first_tracked = std::min(first_tracked, i);
+    ASSERT_EQ(jobs.size(), a.mapped.size()) << "frame " << i;
+    for (; !jobs.empty(); jobs.pop_front()) {
+      const MappingJob job = fromMsg(throughWire(toMsg(jobs.front(), "map")),
+                                     {&scales_of.scales(), images.rgb.size()});
+      if (keyframes++ == 0) {  // the first job also to a side that started empty: refused
+        try {
+          empty.mapKeyFrame(job);
+          ADD_FAILURE() << "a job made in a loaded map was mapped in an empty one";
+        } catch (const std::invalid_argument& e) {
+          EXPECT_NE(std::string(e.what()).find("no map file"), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find("checksum"), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(empty.map().numKeyFrames(), 0u);
+        EXPECT_EQ(empty.map().numMapPoints(), 0u);
+      }
+      apart.followMapUpdate(
+          fromMsg(throughWire(toMsg(*mapping.mapKeyFrame(job).map_update, "map"))));
+    }
+  }
+  std::cout << loaded << " keyframes loaded, tracked from frame " << first_tracked << ", "
+            << keyframes << " keyframes added apart\n";
+  EXPECT_EQ(first_tracked, kMapped);  // relocalised at once: the map saw the frames before
+  EXPECT_GE(keyframes, 3u);
+  EXPECT_GT(mapping.map().numKeyFrames(), loaded);
+  test::expectSameTrajectory(apart.keyFrameTrajectory(), split.keyFrameTrajectory());
+  test::expectSameMap(mapping.map(), split.map(), "the mapping sides");
+  test::expectSameMap(apart.trackerMap(), split.trackerMap(), "the trackers' copies");
 }
 
 }  // namespace

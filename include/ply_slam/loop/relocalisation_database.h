@@ -9,6 +9,7 @@
 #include "ply_slam/loop/loop_options.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/map/map_file_contents.h"
 
 namespace ply_slam {
 
@@ -26,14 +27,20 @@ class RelocalisationDatabase {
 
   // Adds (or replaces) a keyframe with the segmentation it was handed over with.
   void add(const KeyFrame& keyframe, const KeyFrameSegmentation& segmentation);
+  // Adds a keyframe of a loaded map with the features its place record keeps, as the mapping
+  // side's LoopCloser::addLoadedKeyFrame does.
+  void addLoaded(const KeyFrame& keyframe, const KeyFramePlace& place);
   // Forgets a keyframe (erased from the map); unknown ids are ignored.
   void remove(long id);
   // The keyframes whose ORB words an image's descriptors share, most similar first, at most
   // max_results.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
+  // The ORB vocabulary as a map file records it.
+  const MapVocabulary& orbVocabulary() const { return orb_identity_; }
 
  private:
   BinaryVocabulary orb_;
+  MapVocabulary orb_identity_;
   BowDatabase database_;
   std::vector<std::string> mover_classes_;
   int mask_dilation_px_;

@@ -41,6 +41,9 @@ struct KeyFramePlace {
   std::vector<uint8_t> used_keypoints;  // per keypoint, 1: in the database (off moving objects)
   cv::Mat lbd_descriptors;              // M x 32 CV_8U: the lines of its image; may be empty
   std::vector<InstanceBox> instances;   // its segmented objects
+
+  // Whether keypoint i is in the database (a keyframe without a record: every one).
+  bool uses(size_t i) const { return i >= used_keypoints.size() || used_keypoints[i] != 0; }
 };
 
 // A map as a map file holds it, linked as in a Map: keyframes (id order; the first is the
@@ -52,6 +55,9 @@ struct MapFileContents {
   std::vector<std::shared_ptr<MapPoint>> points;
   std::vector<std::shared_ptr<MapLine>> lines;
   std::map<long, KeyFramePlace> places;  // by keyframe id; empty without place recognition
+  // The checksum the file ends with: names its content (two processes that each load a map must
+  // have loaded the same one).
+  uint64_t checksum = 0;
 };
 
 }  // namespace ply_slam

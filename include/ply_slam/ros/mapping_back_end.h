@@ -5,6 +5,7 @@
 #include "ply_slam/common/config.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/dense/occupancy_grid_builder.h"
+#include "ply_slam/ros/mapping_node_options.h"
 #include "ply_slam/system/mapping_side.h"
 
 namespace ply_slam {
@@ -15,12 +16,14 @@ namespace ply_slam {
 struct MappingBackEnd {
   std::unique_ptr<DenseMappingWorker> dense;           // null: dense.enabled is false
   std::unique_ptr<OccupancyGridBuilder> grid_builder;  // null: no dense maps or grid.enabled false
-  // ~map_keyframes: the mapping side, and the ORB pyramid's scale per level its keyframes use.
+  // ~map_keyframes: the ORB pyramid's scale per level its keyframes point to (on the heap: the
+  // back end moves, they must not), and the mapping side (with ~map the saved map loaded).
+  std::shared_ptr<const std::vector<double>> orb_scales;
   std::unique_ptr<MappingSide> mapping;
-  std::vector<double> orb_scales;
 
-  // Throws std::runtime_error naming a vocabulary that does not load (map_keyframes, loop on).
-  static MappingBackEnd fromConfig(const SystemConfig& config, bool map_keyframes = false);
+  // Throws std::runtime_error naming a vocabulary that does not load (map_keyframes, loop on) or
+  // a map file that does not (map_keyframes with ~map), with the fault.
+  static MappingBackEnd fromOptions(const MappingNodeOptions& options);
 };
 
 }  // namespace ply_slam

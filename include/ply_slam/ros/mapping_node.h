@@ -50,6 +50,7 @@ class MappingNode {
               MappingBackEnd back_end);
 
  private:
+  void keepLoadedMap();
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
@@ -109,8 +110,9 @@ class MappingNode {
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
   // ~map_keyframes: the mapping side (its map is its own) on its thread, the tracker's jobs in
   // (numbered; spinner thread only) and the updates out (numbered in the same way).
+  // The ORB scales first: the map's keyframes point to them.
+  std::shared_ptr<const std::vector<double>> orb_scales_;
   std::unique_ptr<MappingSide> mapping_;
-  std::vector<double> orb_scales_;
   std::unique_ptr<MappingThread> mapping_thread_;
   ros::Subscriber job_sub_;
   ros::Publisher update_pub_;

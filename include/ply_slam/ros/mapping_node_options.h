@@ -25,7 +25,9 @@ struct MappingNodeOptions {
   // fixed placement of the world in map_frame, e.g. to show the optical-frame world of a TUM bag
   // upright. Only without odometry and with world_frame unlike map_frame; [] = none.
   std::optional<Eigen::Isometry3d> world_in_map;
-  std::string map;  // a saved map being localised in: its world_in_map.txt places the world
+  // A saved map being localised in: its world_in_map.txt places the world; with map_keyframes
+  // the mapping side starts from its map file (the tracker apart loads the same).
+  std::string map;
   double dense_publish_period = 2.0;  // s, > 0
   double grid_publish_period = 2.0;   // s, > 0
   std::string keyframe_topic = "tracking_node/keyframe";

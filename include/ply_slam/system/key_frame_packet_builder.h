@@ -6,6 +6,7 @@
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/map/map.h"
 #include "ply_slam/semantic/instance.h"
 
 namespace ply_slam {
@@ -13,6 +14,8 @@ namespace ply_slam {
 // The keyframe's pose, features and landmarks as they are now, without images (what a mapper
 // that missed the keyframe can still be given).
 KeyFramePacket makeSparseKeyFramePacket(const KeyFrame& keyframe, const PinholeCamera& camera);
+// So, every keyframe of the map (its lock taken here).
+std::vector<KeyFramePacket> sparseKeyFramePackets(const Map& map, const PinholeCamera& camera);
 
 // The instances of an image of `size` as one label image, larger ones drawn first so that a
 // smaller one in front keeps its pixels (those in `dynamic_ids` marked dynamic), and the

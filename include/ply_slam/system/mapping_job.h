@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -27,6 +28,9 @@ struct MappingJob {
   // The tracker's reference keyframe when it handed the job over: culling leaves it (the
   // mapping side of another process has no other way to know it).
   long reference_keyframe = -1;
+  // The checksum of the map file the tracker's map started from (MapFileContents::checksum; 0:
+  // an empty map): the mapping side must have started from the same (MappingSide::checkJob).
+  uint64_t loaded_map = 0;
 
   // The same job owning copies of its images: the mapping side may run later on another
   // thread while the caller reuses its buffers, and the keyframe packet keeps these copies.

@@ -48,11 +48,22 @@ class MappingSide {
   void setHooks(Hooks hooks) { hooks_ = std::move(hooks); }
   // Maps the job's keyframe: the tracker's report replayed (follows_reports), map upkeep and
   // local BA, its packet, the loop query. A job without a keyframe writes back a global bundle
-  // adjustment that ended (the whole map moves).
+  // adjustment that ended (the whole map moves). Throws what checkJob throws, the side unchanged.
   MappedKeyFrame mapKeyFrame(const MappingJob& job);
+  // Throws std::invalid_argument when the job's keyframe was made in a map that started from
+  // another map file than this side's (MappingJob::loaded_map): its ids would name other things.
+  void checkJob(const MappingJob& job) const;
 
-  // The camera, pyramid and vocabularies a map file of this side's map records.
+  // The camera, pyramid and vocabularies a map file of this side's map records; `fileSetup`
+  // gives them for a system with these vocabularies (a tracker apart has no MappingSide).
   const MapFileSetup& mapFileSetup() const { return file_setup_; }
+  static MapFileSetup fileSetup(const SystemConfig& config, MapVocabulary orb, MapVocabulary lbd);
+  // Before the first job: takes the map saved in `file` with its place records (`scales`: the
+  // ORB pyramid's per level, outliving the map). Throws std::runtime_error naming the file and
+  // the fault, the side unchanged; std::logic_error when the map is not empty.
+  void loadMap(const std::string& file, const std::vector<double>* scales);
+  // The checksum of the map file loaded (MapFileContents::checksum); 0: started empty.
+  uint64_t loadedMap() const { return loaded_map_; }
   // Writes the map with its place records into `file` (MapFileWriter) under the map's lock;
   // the folder is created. Throws std::runtime_error naming the file.
   void saveMap(const std::string& file) const;
@@ -76,6 +87,7 @@ class MappingSide {
   Map map_;
   Mapper mapper_;
   MapFileSetup file_setup_;
+  uint64_t loaded_map_ = 0;
   Hooks hooks_;
   // How the Mapper moved the world while mapping a keyframe, in order, for its update.
   std::vector<Eigen::Isometry3d> corrections_;

@@ -87,8 +87,8 @@ class InvalidFrame : public std::invalid_argument {
 // thread of its own; the tracker's copy follows each update at the first frame after it.
 // kApart: the tracking side alone, as tracking_node runs it beside a mapping_node: each new
 // keyframe's job goes to the job sink (setJobSink), the copy follows the updates given to
-// followMapUpdate, nothing is mapped here and no place database is kept (no relocalisation
-// through place recognition, no map to save or load).
+// followMapUpdate, nothing is mapped here; relocalisation goes through a place database of its
+// own (loop.enabled); a loaded map is loaded by the mapping side too, from the same file.
 enum class MappingMode { kInline, kOwnThread, kSplit, kSplitOwnThread, kApart };
 
 // The whole pipeline in one process, frame by frame: the tracking side in process(), the
@@ -154,9 +154,11 @@ class System {
   // Before the first frame: takes the map saved in `folder`. Tracking starts lost and
   // relocalises in it (place-recognition candidates and PnP), so no pose is reported before;
   // frame and keyframe ids continue after the map's. `localisation_only`: no keyframes nor
-  // landmarks are added; false: the map is extended. Throws std::runtime_error naming the file
-  // and the fault (missing, truncated, corrupted, another version, camera, pyramid or
-  // vocabulary), the system unchanged; std::logic_error after the first frame or with kApart.
+  // landmarks are added; false: the map is extended. With kApart the tracker's copy loads it
+  // and the mapping side elsewhere must load the same file (MappingSide::loadMap): each job
+  // names the file (MappingJob::loaded_map). Throws std::runtime_error naming the file and the
+  // fault (missing, truncated, corrupted, another version, camera, pyramid or vocabulary), the
+  // system unchanged; std::logic_error after the first frame.
   void loadMap(const std::string& folder, bool localisation_only = true);
   const SystemConfig& config() const { return config_; }
 
@@ -197,6 +199,10 @@ class System {
   // copy; after a whole-map update the keyframes the mapping side has not seen yet move as the
   // one before them moved, and the tracker as the mapping side told.
   void followMapper(const MapUpdate& update);
+  // The camera, pyramid and vocabularies a map file must have been made with to load here.
+  MapFileSetup mapFileSetup() const;
+  // loadMap's read map into the tracker's copy (and its keyframes into the place database).
+  void adoptTrackerCopy(MapFileContents copy);
   // followMapper's whole-map update (after a loop or a global BA): keyframes the mapping side
   // has not seen move as the one before them moved (carryAlong).
   void followWholeMap(const MapUpdate& update);
@@ -239,7 +245,8 @@ class System {
   AnchoredTrajectory tracked_;
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
   std::set<long> unmapped_anchors_;
-  JobSink job_sink_;  // kApart
+  JobSink job_sink_;         // kApart
+  uint64_t loaded_map_ = 0;  // the checksum of the map file loaded (0: none), for the jobs
   // kApart with loop.enabled: the keyframes' ORB words, for relocalisation (the mapping side's
   // database is in another process).
   std::unique_ptr<RelocalisationDatabase> places_;
