@@ -29,23 +29,33 @@ void RelocalisationDatabase::add(const KeyFrame& keyframe,
                                  const KeyFrameSegmentation& segmentation) {
   const cv::Mat movers = movingPixels(segmentation.label_image, segmentation.instances,
                                       mover_classes_, mask_dilation_px_);
-  const FrameFeatures& features = keyframe.features;
-  KeyFrameWords words;
-  words.points =
-      orb_.transform(keptRows(features.descriptors, offMask(features.undistorted, movers)));
-  database_.add(keyframe.id, std::move(words));
+  add(keyframe.id, keyframe.features.descriptors, offMask(keyframe.features.undistorted, movers));
 }
 
 void RelocalisationDatabase::addLoaded(const KeyFrame& keyframe, const KeyFramePlace& place) {
-  const FrameFeatures& features = keyframe.features;
-  std::vector<bool> kept(features.size());
+  std::vector<bool> kept(keyframe.features.size());
   for (size_t i = 0; i < kept.size(); ++i) kept[i] = place.uses(i);
-  KeyFrameWords words;
-  words.points = orb_.transform(keptRows(features.descriptors, kept));
-  database_.add(keyframe.id, std::move(words));
+  add(keyframe.id, keyframe.features.descriptors, kept);
 }
 
-void RelocalisationDatabase::remove(long id) { database_.remove(id); }
+void RelocalisationDatabase::add(long id, const cv::Mat& descriptors,
+                                 const std::vector<bool>& kept) {
+  KeyFrameWords words;
+  words.points = orb_.transform(keptRows(descriptors, kept));
+  database_.add(id, std::move(words));
+  used_keypoints_[id].assign(kept.begin(), kept.end());
+}
+
+void RelocalisationDatabase::remove(long id) {
+  database_.remove(id);
+  used_keypoints_.erase(id);
+}
+
+std::map<long, KeyFramePlace> RelocalisationDatabase::places() const {
+  std::map<long, KeyFramePlace> places;
+  for (const auto& [id, used] : used_keypoints_) places[id].used_keypoints = used;
+  return places;
+}
 
 std::vector<long> RelocalisationDatabase::recognise(const cv::Mat& orb_descriptors,
                                                     size_t max_results) const {

@@ -262,8 +262,8 @@ void linkKeyFrames(MapFileContents& map, const KeyFrameIndex& index,
   }
 }
 
-MapFileContents decode(ByteReader& in, const MapFileSetup& stored,
-                       const std::vector<double>* scales) {
+MapFileContents decodePayload(ByteReader& in, const MapFileSetup& stored,
+                              const std::vector<double>* scales) {
   MapFileContents map;
   map.setup = stored;
   KeyFrameIndex index;
@@ -300,10 +300,8 @@ MapFileContents decode(ByteReader& in, const MapFileSetup& stored,
   return map;
 }
 
-std::vector<uint8_t> checkedBytes(const std::string& path) {
-  std::optional<std::vector<uint8_t>> read = readFileBytes(path);
-  if (!read) fail(path, "cannot be opened or read (missing or unreadable)");
-  const std::vector<uint8_t>& bytes = *read;
+// Throws naming `path` unless `bytes` are a whole map file of this version whose checksum holds.
+void checkBytes(const std::vector<uint8_t>& bytes, const std::string& path) {
   if (bytes.size() < sizeof(map_file::kMagic)) fail(path, "truncated (no header)");
   if (std::memcmp(bytes.data(), map_file::kMagic, sizeof(map_file::kMagic)) != 0)
     fail(path, "bad magic: not a ply_slam map file");
@@ -320,26 +318,33 @@ std::vector<uint8_t> checkedBytes(const std::string& path) {
   if (bytes.size() > size) fail(path, "trailing bytes after the checksum");
   if (fnv1a64(bytes.data(), size - 8) != ByteReader::word(bytes.data() + size - 8, 8))
     fail(path, "checksum mismatch (corrupted)");
-  return std::move(*read);
 }
 
 }  // namespace
 
 MapFileContents MapFileReader::read(const std::string& path, const MapFileSetup& expected,
                                     const std::vector<double>* scales) {
-  const std::vector<uint8_t> bytes = checkedBytes(path);
+  const std::optional<std::vector<uint8_t>> bytes = readFileBytes(path);
+  if (!bytes) fail(path, "cannot be opened or read (missing or unreadable)");
+  return decode(*bytes, path, expected, scales);
+}
+
+MapFileContents MapFileReader::decode(const std::vector<uint8_t>& bytes, const std::string& name,
+                                      const MapFileSetup& expected,
+                                      const std::vector<double>* scales) {
+  checkBytes(bytes, name);
   ByteReader in(bytes.data() + map_file::kHeaderBytes, bytes.size() - map_file::kHeaderBytes - 8);
   try {
     const MapFileSetup stored = setup(in);
     const std::string differs = mismatch(stored, expected);
-    if (!differs.empty()) fail(path, differs);
-    MapFileContents contents = decode(in, stored, scales);
+    if (!differs.empty()) fail(name, differs);
+    MapFileContents contents = decodePayload(in, stored, scales);
     contents.checksum = ByteReader::word(bytes.data() + bytes.size() - 8, 8);
     return contents;
   } catch (const Inconsistent& e) {
-    fail(path, std::string("inconsistent content: ") + e.what());
+    fail(name, std::string("inconsistent content: ") + e.what());
   } catch (const ByteReader::Truncated& e) {
-    fail(path, std::string("inconsistent content (a record runs past the payload): ") + e.what());
+    fail(name, std::string("inconsistent content (a record runs past the payload): ") + e.what());
   }
 }
 

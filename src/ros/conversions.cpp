@@ -290,6 +290,9 @@ MapSnapshotMsg toMsg(const MapSnapshot& s, const std::string& world_frame) {
     p.pose = toPoseMsg(pose.T_wc);
     m.trajectory.push_back(p);
   }
+  m.map_file = s.handover.map_file;
+  m.updates_followed = s.handover.updates_followed;
+  m.loaded_map = s.handover.loaded_map;
   return m;
 }
 
@@ -298,6 +301,10 @@ MapSnapshot fromMsg(const MapSnapshotMsg& m) {
   for (const auto& k : m.keyframes) s.keyframes.push_back(fromMsg(k));
   for (const auto& p : m.trajectory)
     s.trajectory.push_back({p.header.stamp.toSec(), fromPoseMsg(p.pose)});
+  if (m.updates_followed < 0)
+    throw std::invalid_argument("map snapshot: updates_followed " +
+                                std::to_string(m.updates_followed) + " < 0");
+  s.handover = {m.map_file, m.updates_followed, m.loaded_map};
   return s;
 }
 

@@ -7,12 +7,16 @@
 
 namespace ply_slam {
 
+std::unique_ptr<MappingSide> MappingBackEnd::makeMappingSide(const SystemConfig& config) {
+  // On its own thread, as tracking_node's thread: a global BA is solved beside the keyframes.
+  return std::make_unique<MappingSide>(config, true, false);
+}
+
 MappingBackEnd MappingBackEnd::fromOptions(const MappingNodeOptions& options) {
   const SystemConfig& config = options.config;
   MappingBackEnd back_end;
   if (options.map_keyframes) {
-    // On its own thread, as tracking_node's thread: a global BA is solved beside the keyframes.
-    back_end.mapping = std::make_unique<MappingSide>(config, true, false);
+    back_end.mapping = makeMappingSide(config);
     back_end.orb_scales =
         std::make_shared<const std::vector<double>>(OrbExtractor(config.orb).scales());
     // The tracker apart loads the same file into its copy; each job says which it loaded.

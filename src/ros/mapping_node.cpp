@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/PoseArray.h>
 #include <nav_msgs/Path.h>
+#include <ply_slam/HandOverMap.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
@@ -77,6 +78,16 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
     // What the mapping thread finished goes out within a hundredth of a second.
     mapped_timer_ = nh_.createWallTimer(ros::WallDuration(0.01),
                                         [this](const ros::WallTimerEvent&) { takeMapped(); });
+    // Started after the tracker (a restart): asked once whether jobs went by; then at each gap.
+    snapshot_sub_ =
+        nh_.subscribe(options_.map_snapshot_topic, 2, &MappingNode::onMapSnapshot, this);
+    hand_over_client_ = nh_.serviceClient<HandOverMap>(options_.hand_over_service);
+    startup_timer_ = nh_.createWallTimer(
+        ros::WallDuration(1.0),
+        [this](const ros::WallTimerEvent&) {
+          if (hand_over_client_.exists()) askForHandOver("at the start");
+        },
+        true);
   } else {
     keyframe_sub_ = nh_.subscribe(options_.keyframe_topic, 100, &MappingNode::onKeyFrame, this);
     update_sub_ = nh_.subscribe(options_.map_update_topic, 100, &MappingNode::onMapUpdate, this);
@@ -211,13 +222,65 @@ void MappingNode::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) {
     bad_input_.report("mapping_job", e.what());
     return;
   }
-  // A lost job is lost for good: the keyframe and the landmarks it made are not in this map, and
-  // later reports naming them leave them out.
-  if (const uint64_t missed = job_sequence_.receive(msg->sequence))
-    ROS_ERROR_STREAM("mapping_node: missed " << missed << " keyframe jobs from the tracker; the "
-                                             << "map goes on without their keyframes");
+  const uint64_t sequence = msg->sequence;
+  if (awaiting_handover_) {  // mapped after the tracker's copy, if not in it
+    held_jobs_.emplace_back(sequence, std::move(job));
+    return;
+  }
+  if (const uint64_t missed = job_sequence_.receive(sequence)) {
+    // The job's report builds on the missed ones: the tracker's copy, which holds them, comes.
+    held_jobs_.emplace_back(sequence, std::move(job));
+    askForHandOver("after missing " + std::to_string(missed) + " jobs");
+    if (!awaiting_handover_) mapHeldJobs(0);  // no answer: the map goes on without them
+    return;
+  }
   mapping_thread_->push(std::move(job));
   noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
+}
+
+// Every update made so far goes out first: those the tracker has not followed when it hands
+// over are dropped there (their numbers are below the one asked with).
+void MappingNode::askForHandOver(const std::string& when) {
+  mapping_thread_->waitIdle();
+  takeMapped();
+  HandOverMap ask;
+  ask.request.next_job_sequence = job_sequence_.expected();
+  ask.request.next_update_sequence = updates_sent_;
+  if (!hand_over_client_.call(ask) || !ask.response.success) {
+    ROS_ERROR_STREAM("mapping_node: asked "
+                     << hand_over_client_.getService() << " " << when
+                     << " for the tracker's map, no answer"
+                     << (ask.response.message.empty() ? std::string() : ": " + ask.response.message)
+                     << "; the map goes on without what it missed");
+    return;
+  }
+  awaiting_handover_ = ask.response.handing_over;
+  ROS_INFO_STREAM("mapping_node: " << when << ": " << ask.response.message);
+}
+
+// The jobs held while the tracker's copy was on its way, but those it holds already.
+void MappingNode::mapHeldJobs(uint64_t first) {
+  for (auto& [sequence, job] : held_jobs_) {
+    if (sequence < first) continue;
+    job_sequence_.receive(sequence);
+    mapping_thread_->push(std::move(job));
+  }
+  held_jobs_.clear();
+}
+
+// A new mapping side from the tracker's copy (the old one's map is dropped with it).
+void MappingNode::takeOver(const MapSnapshot& snapshot, uint64_t next_job) {
+  mapping_thread_->waitIdle();
+  std::unique_ptr<MappingSide> fresh = MappingBackEnd::makeMappingSide(options_.config);
+  fresh->takeOver(snapshot.handover, orb_scales_.get());
+  mapping_thread_->takeFinished();  // none: nothing was pushed while waiting
+  mapping_ = std::move(fresh);
+  awaiting_handover_ = false;
+  job_sequence_.resynchronise(next_job);
+  mapHeldJobs(next_job);
+  ROS_INFO_STREAM("mapping_node: maps on from the tracker's copy: "
+                  << mapping_->map().numKeyFrames() << " keyframes, "
+                  << mapping_->map().numMapPoints() << " points; jobs from " << next_job);
 }
 
 // In the order made: each update to the tracker (whose copy follows them in turn), then into the
@@ -270,6 +333,15 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
   } catch (const std::exception& e) {
     bad_input_.report("map_snapshot", e.what());
     return;
+  }
+  if (mapping_) {  // apart: only a handover asked for counts
+    if (!awaiting_handover_ || snapshot.handover.map_file.empty()) return;
+    try {
+      takeOver(snapshot, msg->next_keyframe_sequence);
+    } catch (const std::exception& e) {
+      bad_input_.report("map_snapshot", e.what());
+      return;
+    }
   }
   const std::vector<KeyFramePacket>& keyframes = snapshot.keyframes;
   Trajectory& poses = snapshot.trajectory;

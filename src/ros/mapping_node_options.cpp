@@ -50,6 +50,7 @@ MappingNodeOptions mappingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "resend_service", &o.resend_service);
   readParam(pnh, "tracker_save_map_service", &o.tracker_save_map_service);
   readParam(pnh, "map_keyframes", &o.map_keyframes);
+  readParam(pnh, "hand_over_service", &o.hand_over_service);
   readParam(pnh, "mapping_job_topic", &o.mapping_job_topic);
   // Said at the start, as the tracker says it: the mapping side apart loads the map file.
   const std::filesystem::path map_file = std::filesystem::path(o.map) / System::kMapFileName;

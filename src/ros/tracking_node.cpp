@@ -57,6 +57,7 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNode
     job_pub_ = pnh_.advertise<MappingJobMsg>("mapping_job", 100);
     mapper_update_sub_ =
         nh_.subscribe(options_.mapper_update_topic, 100, &TrackingNode::onMapperUpdate, this);
+    hand_over_srv_ = pnh_.advertiseService("hand_over_map", &TrackingNode::onHandOverMap, this);
   }
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
 
@@ -192,37 +193,81 @@ bool TrackingNode::onResendMap(std_srvs::Trigger::Request&, std_srvs::Trigger::R
 
 // The map file into request.path (a folder), written by the worker between two frames.
 bool TrackingNode::onSaveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
-  auto answer = std::make_shared<std::promise<std::pair<bool, std::string>>>();
-  std::future<std::pair<bool, std::string>> answered = answer->get_future();
   const std::string folder = request.path;
-  auto save = [this, folder, answer] {
+  const std::optional<Answer> answer = betweenFrames(
+      [this, folder]() -> Answer {
+        if (!system_) throw std::runtime_error("no map yet: no frame has arrived");
+        system_->saveMap(folder);
+        return {true, std::to_string(system_->map().numKeyFrames()) + " keyframes, " +
+                          std::to_string(system_->map().numMapPoints()) + " points to " +
+                          (std::filesystem::path(folder) / System::kMapFileName).string()};
+      },
+      std::chrono::seconds(60));
+  std::tie(response.success, response.message) =
+      answer.value_or(Answer{false, "the tracker did not save the map within 60 s"});
+  if (response.success)
+    ROS_INFO_STREAM("save_map: " << response.message);
+  else
+    ROS_WARN_STREAM("save_map: " << response.message);
+  return true;
+}
+
+bool TrackingNode::onHandOverMap(HandOverMap::Request& request, HandOverMap::Response& response) {
+  const uint64_t next_job = request.next_job_sequence, next_update = request.next_update_sequence;
+  const std::optional<Answer> answer =
+      betweenFrames([this, next_job, next_update] { return handOver(next_job, next_update); },
+                    std::chrono::seconds(60));
+  response.success = answer.has_value();
+  response.handing_over = answer && answer->first;
+  response.message = answer ? answer->second : "the tracker did not answer within 60 s";
+  ROS_INFO_STREAM("hand_over_map: " << response.message);
+  return true;
+}
+
+TrackingNode::Answer TrackingNode::handOver(uint64_t next_job, uint64_t next_update) {
+  if (next_job == keyframes_)
+    return {false, "nothing to hand over: every job went to the mapping side (" +
+                       std::to_string(next_job) + ")"};
+  if (!system_) return {false, "nothing to hand over: no frame has arrived"};
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    update_floor_ = next_update;
+    resync_updates_ = true;
+    while (!mapper_updates_.empty() && mapper_updates_.front().first < next_update)
+      mapper_updates_.pop_front();
+  }
+  MapSnapshot map{system_->sparseKeyFramePackets(), system_->cameraTrajectory(),
+                  system_->handOverMap()};
+  MapSnapshotMsg snapshot = toMsg(map, options_.world_frame);
+  snapshot.header.stamp = ros::Time::now();
+  snapshot.next_keyframe_sequence = keyframes_;
+  snapshot.next_update_sequence = updates_;
+  snapshot_pub_.publish(snapshot);
+  return {true, "the mapping side expected job " + std::to_string(next_job) + " of " +
+                    std::to_string(keyframes_) + ": handed over " +
+                    std::to_string(map.keyframes.size()) + " keyframes (" +
+                    std::to_string(map.handover.map_file.size() / 1024) + " KiB) on " +
+                    snapshot_pub_.getTopic()};
+}
+
+std::optional<TrackingNode::Answer> TrackingNode::betweenFrames(std::function<Answer()> task,
+                                                                std::chrono::seconds timeout) {
+  auto answer = std::make_shared<std::promise<Answer>>();
+  std::future<Answer> answered = answer->get_future();
+  auto run = [task = std::move(task), answer] {
     try {
-      if (!system_) throw std::runtime_error("no map yet: no frame has arrived");
-      system_->saveMap(folder);
-      answer->set_value(
-          {true, std::to_string(system_->map().numKeyFrames()) + " keyframes, " +
-                     std::to_string(system_->map().numMapPoints()) + " points to " +
-                     (std::filesystem::path(folder) / System::kMapFileName).string()});
+      answer->set_value(task());
     } catch (const std::exception& e) {
       answer->set_value({false, e.what()});
     }
   };
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.push_front({nullptr, nullptr, save});
+    queue_.push_front({nullptr, nullptr, run});
   }
   queue_cv_.notify_one();
-  if (answered.wait_for(std::chrono::seconds(60)) != std::future_status::ready) {
-    response.success = false;
-    response.message = "the tracker did not save the map within 60 s";
-  } else {
-    std::tie(response.success, response.message) = answered.get();
-  }
-  if (response.success)
-    ROS_INFO_STREAM("save_map: " << response.message);
-  else
-    ROS_WARN_STREAM("save_map: " << response.message);
-  return true;
+  if (answered.wait_for(timeout) != std::future_status::ready) return std::nullopt;
+  return answered.get();
 }
 
 // Frames wait here for the worker; when it falls this far behind the oldest frame goes (a live
@@ -351,25 +396,29 @@ void TrackingNode::onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     bad_input_.report("map_update", e.what());
     return;
   }
-  if (const uint64_t missed = mapper_update_sequence_.receive(msg->sequence))
-    ROS_ERROR_STREAM("tracking_node: missed " << missed << " map updates from the mapping side; "
-                                              << "the tracker's copy of the map goes on without");
+  uint64_t missed = 0;
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    mapper_updates_.push_back(std::move(update));
+    if (msg->sequence < update_floor_) return;  // made before a handover: that side started anew
+    if (std::exchange(resync_updates_, false)) mapper_update_sequence_.resynchronise(update_floor_);
+    missed = mapper_update_sequence_.receive(msg->sequence);
+    mapper_updates_.emplace_back(msg->sequence, std::move(update));
   }
+  if (missed)
+    ROS_ERROR_STREAM("tracking_node: missed " << missed << " map updates from the mapping side; "
+                                              << "the tracker's copy of the map goes on without");
   queue_cv_.notify_one();
 }
 
 bool TrackingNode::followMapper() {
-  std::deque<MapUpdate> updates;
+  std::deque<std::pair<uint64_t, MapUpdate>> updates;
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
     updates.swap(mapper_updates_);
   }
   if (updates.empty() || !system_) return false;
   const ThreadCpuStopwatch cpu;
-  for (const MapUpdate& update : updates) system_->followMapUpdate(update);
+  for (const auto& [sequence, update] : updates) system_->followMapUpdate(update);
   updates_followed_ += updates.size();
   longest_follow_cpu_ms_ = std::max(longest_follow_cpu_ms_, cpu.elapsedMs());
   return true;

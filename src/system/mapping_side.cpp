@@ -38,9 +38,22 @@ void MappingSide::loadMap(const std::string& file, const std::vector<double>* sc
   if (map_.numKeyFrames() != 0)
     throw std::logic_error("MappingSide::loadMap: the map is not empty");
   MapFileContents loaded = MapFileReader::read(file, file_setup_, scales);
-  map_.adopt(std::move(loaded.keyframes), std::move(loaded.points), std::move(loaded.lines));
-  mapper_.addLoadedKeyFrames(loaded.places);
   loaded_map_ = loaded.checksum;
+  adopt(std::move(loaded));
+}
+
+void MappingSide::takeOver(const MapHandover& handover, const std::vector<double>* scales) {
+  if (map_.numKeyFrames() != 0)
+    throw std::logic_error("MappingSide::takeOver: the map is not empty");
+  adopt(MapFileReader::decode(handover.map_file, "the tracker's copy of the map", file_setup_,
+                              scales));
+  loaded_map_ = handover.loaded_map;
+  updates_made_ = handover.updates_followed;
+}
+
+void MappingSide::adopt(MapFileContents contents) {
+  map_.adopt(std::move(contents.keyframes), std::move(contents.points), std::move(contents.lines));
+  mapper_.addLoadedKeyFrames(contents.places);
 }
 
 void MappingSide::checkJob(const MappingJob& job) const {

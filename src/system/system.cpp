@@ -12,6 +12,7 @@
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/loop/vocabulary_identity.h"
 #include "ply_slam/map/map_file_reader.h"
+#include "ply_slam/map/map_file_writer.h"
 #include "ply_slam/mapping/carry_along.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
@@ -402,6 +403,20 @@ MapFileSetup System::mapFileSetup() const {
   return MappingSide::fileSetup(
       config_, places_->orbVocabulary(),
       configuredVocabularyIdentity(config_.loop.lbd_vocabulary, DescriptorKind::kLbd));
+}
+
+MapHandover System::handOverMap() {
+  if (mapping_) throw std::logic_error("System::handOverMap: only with the mapping side apart");
+  std::lock_guard<std::mutex> lock(tracking_map_->updateMutex());
+  MapHandover handover;
+  handover.map_file =
+      MapFileWriter::encode(mapFileSetup(), *tracking_map_,
+                            places_ ? places_->places() : std::map<long, KeyFramePlace>{});
+  handover.updates_followed = updates_followed_;
+  handover.loaded_map = loaded_map_;
+  report_ = TrackerReport{};
+  followed_at_last_keyframe_ = updates_followed_;
+  return handover;
 }
 
 void System::adoptTrackerCopy(MapFileContents copy) {

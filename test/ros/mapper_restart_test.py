@@ -2,7 +2,11 @@
 """rostest: fr1_xyz_37 played slowly into both nodes; mapping_node is killed a third of the way in
 and started again a few frames later. The restarted mapper must notice what it missed, get the
 tracker's whole map and trajectory back, save a whole trajectory (every frame, ATE as offline) and
-a map that holds the keyframes it never received itself, and say its dense maps are partial."""
+a map that holds the keyframes it never received itself, and say its dense maps are partial.
+With ~apart (the mapping side in mapping_node) the restarted node asks the tracker to hand over
+its copy of the map, maps the later keyframes on from it (the tracker follows its updates) and
+writes the map file itself, which must load again."""
+import json
 import csv
 import os
 import shutil
@@ -23,6 +27,7 @@ SAVE_MAP = MAPPER + "/save_map"
 class MapperRestart(unittest.TestCase):
     def test_restarted_mapper_gets_the_map_back(self):
         sequence = support.shared_path(rospy.get_param("~sequence"))
+        apart = rospy.get_param("~apart", False)
         work = support.work_dir()
         self.addCleanup(shutil.rmtree, work, True)
         bag = os.path.join(work, "sequence.bag")
@@ -38,6 +43,7 @@ class MapperRestart(unittest.TestCase):
         down_at = stats.get("keyframes")
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= down_at + 2, 60),
                         "no keyframe while the mapper was down")
+        followed_at_restart = stats.get("updates_followed")
         mapper = subprocess.Popen([support.tool("mapping_node"), "__name:=mapping_node",
                                    "__ns:=/ply_slam"])
         self.addCleanup(mapper.terminate)
@@ -62,6 +68,18 @@ class MapperRestart(unittest.TestCase):
         self.assertIn(0, ids, "the first keyframe (sent before the restart) is not in the map")
         self.assertFalse(saved.success, "the dense maps miss keyframes but save_map said success")
         self.assertIn("dense maps lack", saved.message)
+        if apart:  # the new mapping side mapped on, the tracker followed, the file loads
+            self.assertGreater(stats.get("updates_followed"), followed_at_restart)
+            part = os.path.join(work, "again")
+            subprocess.run([support.tool("ply_slam_tum"), "--sequence", sequence, "--config",
+                            os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml"),
+                            "--out", part, "--max-frames", "3", "--map", folder],
+                           check=True, capture_output=True)
+            with open(os.path.join(part, "summary.json")) as f:
+                loaded = json.load(f)["map"]
+            print("the map mapping_node wrote: %s" % loaded)
+            self.assertEqual(loaded["first_tracked_frame"], 0)
+            self.assertEqual(loaded["keyframes_loaded"], len(ids))
 
 
 if __name__ == "__main__":

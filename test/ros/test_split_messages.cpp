@@ -497,5 +497,62 @@ TEST(SplitMessages, ATrackerAndAMappingSideApartStartFromOneSavedMap) {
   test::expectSameMap(apart.trackerMap(), split.trackerMap(), "the trackers' copies");
 }
 
+// A mapping side that starts anew while the tracker apart goes on (mapping_node restarted): the
+// first one maps 40 frames, then is gone for 20 (their jobs lost), then a new one takes over the
+// tracker's copy (System::handOverMap) and maps the rest. The copy follows the new side's
+// updates, and the two end with the same map, field for field, the keyframes made while no
+// mapping side ran included.
+TEST(SplitMessages, AMappingSideThatStartsAnewTakesOverTheTrackersCopy) {
+  PLY_SLAM_REQUIRE_SHARED(rpyFolder());
+  SystemConfig config = fr1Config();
+  config.loop.enabled = false;
+  const TumSequence sequence(rpyFolder());
+  System apart(config, MappingMode::kApart);
+  std::deque<MappingJob> jobs;
+  apart.setJobSink([&jobs](MappingJob job) { jobs.push_back(std::move(job)); });
+  const OrbExtractor scales_of(config.orb);
+  auto first = std::make_unique<MappingSide>(config, true, true);
+  std::unique_ptr<MappingSide> second;
+  constexpr size_t kDown = 40, kUp = 60, kEnd = 120;
+  size_t lost_jobs = 0, mapped_after = 0, handed_over = 0;
+  for (size_t i = 0; i < kEnd; ++i) {
+    if (i == kDown) first.reset();
+    if (i == kUp) {
+      second = std::make_unique<MappingSide>(config, true, true);
+      MapSnapshot sent;  // as tracking_node's ~hand_over_map sends it
+      sent.handover = apart.handOverMap();
+      const MapHandover handover = fromMsg(throughWire(toMsg(sent, "map"))).handover;
+      EXPECT_EQ(handover.map_file, sent.handover.map_file);
+      EXPECT_GT(handover.updates_followed, 0);
+      second->takeOver(handover, &scales_of.scales());
+      handed_over = second->map().numKeyFrames();
+      EXPECT_THROW(second->takeOver(handover, &scales_of.scales()), std::logic_error);
+    }
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    ASSERT_EQ(apart.process(images).tracking.state, TrackingState::kOk) << "frame " << i;
+    MappingSide* mapping = first ? first.get() : second.get();
+    for (; !jobs.empty(); jobs.pop_front()) {
+      if (!mapping) {
+        ++lost_jobs;
+        continue;
+      }
+      const MappingJob job = fromMsg(throughWire(toMsg(jobs.front(), "map")),
+                                     {&scales_of.scales(), images.rgb.size()});
+      apart.followMapUpdate(
+          fromMsg(throughWire(toMsg(*mapping->mapKeyFrame(job).map_update, "map"))));
+      mapped_after += mapping == second.get();
+    }
+  }
+  std::cout << lost_jobs << " jobs lost while no mapping side ran, " << handed_over
+            << " keyframes handed over, " << mapped_after << " mapped after\n";
+  EXPECT_GE(lost_jobs, 2u);
+  EXPECT_GE(mapped_after, 3u);
+  // A handover that says it followed a negative number of updates is refused by name.
+  MapSnapshotMsg bad;
+  bad.updates_followed = -1;
+  expectRejectedNaming([&] { fromMsg(bad); }, "updates_followed");
+  test::expectSameMap(second->map(), apart.trackerMap(), "the new mapping side and the copy");
+}
+
 }  // namespace
 }  // namespace ply_slam

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -35,13 +36,19 @@ class RelocalisationDatabase {
   // The keyframes whose ORB words an image's descriptors share, most similar first, at most
   // max_results.
   std::vector<long> recognise(const cv::Mat& orb_descriptors, size_t max_results) const;
+  // Each keyframe's place record as far as this database knows it: the keypoints it keeps (no
+  // lines nor instances: the mapping side's), for a map file of the tracker's copy.
+  std::map<long, KeyFramePlace> places() const;
   // The ORB vocabulary as a map file records it.
   const MapVocabulary& orbVocabulary() const { return orb_identity_; }
 
  private:
+  void add(long id, const cv::Mat& descriptors, const std::vector<bool>& kept);
+
   BinaryVocabulary orb_;
   MapVocabulary orb_identity_;
   BowDatabase database_;
+  std::map<long, std::vector<uint8_t>> used_keypoints_;  // by keyframe id
   std::vector<std::string> mover_classes_;
   int mask_dilation_px_;
 };

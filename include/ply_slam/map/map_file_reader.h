@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ class MapFileReader {
   // camera, ORB pyramid or vocabulary (both named), or inconsistent content.
   static MapFileContents read(const std::string& path, const MapFileSetup& expected,
                               const std::vector<double>* scales);
+  // So, a map file's bytes (MapFileWriter::encode) that came another way than from a file
+  // (`name` says where in errors).
+  static MapFileContents decode(const std::vector<uint8_t>& bytes, const std::string& name,
+                                const MapFileSetup& expected, const std::vector<double>* scales);
 };
 
 }  // namespace ply_slam

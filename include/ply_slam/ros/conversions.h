@@ -14,6 +14,7 @@
 #include "ply_slam/common/pinhole_camera.h"
 #include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/system/mapping_job.h"
 
 namespace ply_slam {
 
@@ -42,12 +43,15 @@ KeyFramePacket fromMsg(const KeyFrameMsg& msg);
 MapUpdateMsg toMsg(const MapUpdate& update, const std::string& world_frame);
 MapUpdate fromMsg(const MapUpdateMsg& msg);
 
-// A MapSnapshotMsg's keyframes (images empty) and tracked poses (camera -> world, in time order).
+// A MapSnapshotMsg's keyframes (images empty) and tracked poses (camera -> world, in time order),
+// and with the mapping side apart the tracker's copy handed over (empty map_file: none).
 struct MapSnapshot {
   std::vector<KeyFramePacket> keyframes;
   Trajectory trajectory;
+  MapHandover handover;
 };
-// Throws std::invalid_argument as the keyframe and pose conversions do.
+// Throws std::invalid_argument as the keyframe and pose conversions do, and for a negative
+// updates_followed.
 MapSnapshot fromMsg(const MapSnapshotMsg& msg);
 // Header and poses in `world_frame`; the sequence numbers and the stamp are the sender's.
 MapSnapshotMsg toMsg(const MapSnapshot& snapshot, const std::string& world_frame);

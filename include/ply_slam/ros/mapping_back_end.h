@@ -24,6 +24,8 @@ struct MappingBackEnd {
   // Throws std::runtime_error naming a vocabulary that does not load (map_keyframes, loop on) or
   // a map file that does not (map_keyframes with ~map), with the fault.
   static MappingBackEnd fromOptions(const MappingNodeOptions& options);
+  // The mapping side as mapping_node runs it (its map empty); throws as fromOptions.
+  static std::unique_ptr<MappingSide> makeMappingSide(const SystemConfig& config);
 };
 
 }  // namespace ply_slam

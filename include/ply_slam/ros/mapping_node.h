@@ -25,6 +25,7 @@
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/ros/bad_input_log.h"
+#include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/mapping_back_end.h"
 #include "ply_slam/ros/mapping_node_options.h"
 #include "ply_slam/system/mapping_thread.h"
@@ -51,6 +52,11 @@ class MappingNode {
 
  private:
   void keepLoadedMap();
+  // ~map_keyframes: asks the tracker whether jobs went by (a restart, a gap); if so the tracker's
+  // copy comes on ~map_snapshot and jobs wait (held_jobs_) until takeOver.
+  void askForHandOver(const std::string& when);
+  void takeOver(const MapSnapshot& snapshot, uint64_t next_job);
+  void mapHeldJobs(uint64_t first);
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
@@ -118,6 +124,9 @@ class MappingNode {
   ros::Publisher update_pub_;
   ros::WallTimer mapped_timer_;
   MessageSequence job_sequence_;
+  ros::ServiceClient hand_over_client_;
+  bool awaiting_handover_ = false;
+  std::vector<std::pair<uint64_t, MappingJob>> held_jobs_;  // by sequence, while awaiting
   uint64_t updates_sent_ = 0, loops_closed_ = 0;
   ros::ServiceClient resend_client_;
   // tracking_node's ~save_map: without ~map_keyframes the map file that loads again comes from

@@ -36,6 +36,9 @@ struct MappingNodeOptions {
   std::string map_snapshot_topic = "tracking_node/map_snapshot";
   std::string resend_service = "tracking_node/resend_map";
   std::string tracker_save_map_service = "tracking_node/save_map";
+  // With map_keyframes: asked at the start and after a missed job; the tracker hands over its
+  // copy of the map, from which the mapping side starts anew.
+  std::string hand_over_service = "tracking_node/hand_over_map";
   // Run the mapping side here (a MappingSide on a thread of its own) on the jobs of a tracker
   // with ~mapping_apart, and send it the updates (~map_update); false: keep a copy of the map
   // the tracking process maps (keyframe_topic, map_update_topic).

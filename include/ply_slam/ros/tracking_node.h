@@ -4,6 +4,7 @@
 #include <message_filters/sync_policies/approximate_time.h>
 #include <message_filters/synchronizer.h>
 #include <nav_msgs/Path.h>
+#include <ply_slam/HandOverMap.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
@@ -18,6 +19,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "ply_slam/common/message_sequence.h"
@@ -65,6 +67,15 @@ class TrackingNode {
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
   bool onResendMap(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onSaveMap(SaveToPath::Request& request, SaveToPath::Response& response);
+  // ~mapping_apart: a mapping side that starts or missed jobs asks; if it missed any, the worker
+  // sends it the tracker's copy of the map (handOver) before the next frame.
+  bool onHandOverMap(HandOverMap::Request& request, HandOverMap::Response& response);
+  // Runs `task` on the worker between two frames; its answer, or none after `timeout`.
+  using Answer = std::pair<bool, std::string>;
+  std::optional<Answer> betweenFrames(std::function<Answer()> task, std::chrono::seconds timeout);
+  // The worker's part: updates the mapping side sent before `next_update` are no longer
+  // followed, the copy goes out with the snapshot. Answers whether it handed over, and what.
+  Answer handOver(uint64_t next_job, uint64_t next_update);
   void enqueue(Job job);
   void publishSnapshot();
   void publishMapped(const std::vector<MappedKeyFrame>& mapped);
@@ -105,7 +116,7 @@ class TrackingNode {
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
   ros::Publisher job_pub_;             // ~mapping_apart
   ros::Subscriber mapper_update_sub_;  // ~mapping_apart
-  ros::ServiceServer resend_srv_, save_map_srv_;
+  ros::ServiceServer resend_srv_, save_map_srv_, hand_over_srv_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;  // worker thread only, as last_path_pose_ and total_ms_
   Eigen::Isometry3d last_path_pose_ = Eigen::Isometry3d::Identity();
@@ -128,12 +139,17 @@ class TrackingNode {
   sensor_msgs::CameraInfoConstPtr camera_info_;  // under info_mutex_
 
   // The jobs from the spinner to the worker (frames, ~resend_map, ~save_map) and the stop.
-  std::mutex queue_mutex_;                  // guards queue_ and stopping_
-  std::condition_variable queue_cv_;        // queue_ grew or stopping_ was set
-  std::deque<Job> queue_;                   // under queue_mutex_
-  std::deque<MapUpdate> mapper_updates_;    // ~mapping_apart, under queue_mutex_
-  MessageSequence mapper_update_sequence_;  // spinner thread only
-  bool stopping_ = false;                   // under queue_mutex_
+  std::mutex queue_mutex_;            // guards queue_ and stopping_
+  std::condition_variable queue_cv_;  // queue_ grew or stopping_ was set
+  std::deque<Job> queue_;             // under queue_mutex_
+  // ~mapping_apart: the mapping side's updates by sequence, waiting for the worker. After a
+  // handover, updates before update_floor_ are dropped (their mapping side started anew), and
+  // the spinner resynchronises mapper_update_sequence_ there (resync_updates_).
+  std::deque<std::pair<uint64_t, MapUpdate>> mapper_updates_;  // under queue_mutex_
+  uint64_t update_floor_ = 0;                                  // under queue_mutex_
+  bool resync_updates_ = false;                                // under queue_mutex_
+  MessageSequence mapper_update_sequence_;                     // spinner thread only
+  bool stopping_ = false;                                      // under queue_mutex_
   std::thread worker_;
 
   // Counters for ~stats and the shutdown report (atomic: counted on one thread, read on both);

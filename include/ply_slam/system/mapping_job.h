@@ -44,6 +44,15 @@ struct MappingJob {
   }
 };
 
+// What a tracker apart gives a mapping side that starts anew (a mapping process restarted, or
+// one that missed jobs): its copy of the map, which holds all its jobs so far, and where the two
+// stand (System::handOverMap, MappingSide::takeOver).
+struct MapHandover {
+  std::vector<uint8_t> map_file;  // the copy as a map file (MapFileWriter::encode)
+  long updates_followed = 0;      // updates the copy followed: the mapping side counts on from it
+  uint64_t loaded_map = 0;        // the map file the tracker started from (MappingJob::loaded_map)
+};
+
 // What the mapping side made of one keyframe, for whoever keeps a copy of the map (dense maps,
 // mapping_node): the packet first, then what changed.
 struct MappedKeyFrame {

@@ -62,6 +62,11 @@ class MappingSide {
   // ORB pyramid's per level, outliving the map). Throws std::runtime_error naming the file and
   // the fault, the side unchanged; std::logic_error when the map is not empty.
   void loadMap(const std::string& file, const std::vector<double>* scales);
+  // Before the first job, for a mapping side that starts anew while a tracker apart goes on:
+  // the map becomes the tracker's copy (System::handOverMap), and its updates count on from
+  // those the copy followed. Throws std::runtime_error naming the fault (MapFileReader), the
+  // side unchanged; std::logic_error when the map is not empty.
+  void takeOver(const MapHandover& handover, const std::vector<double>* scales);
   // The checksum of the map file loaded (MapFileContents::checksum); 0: started empty.
   uint64_t loadedMap() const { return loaded_map_; }
   // Writes the map with its place records into `file` (MapFileWriter) under the map's lock;
@@ -74,6 +79,8 @@ class MappingSide {
   const Mapper& mapper() const { return mapper_; }
 
  private:
+  // loadMap's and takeOver's map, read and checked, into the empty map.
+  void adopt(MapFileContents contents);
   // Replays the job's report; returns the keyframe's point links it made.
   MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);

@@ -105,6 +105,11 @@ class System {
   // tracker's copy; between two frames, on the thread that calls process().
   void followMapUpdate(const MapUpdate& update);
 
+  // kApart, between two frames: the tracker's copy of the map for a mapping side that starts
+  // anew from it (MappingSide::takeOver); what the tracker did since the last keyframe is in it,
+  // so the next job's report starts from here. std::logic_error in the other modes.
+  MapHandover handOverMap();
+
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
   // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
   FrameResult process(const RgbdImages& images, const std::vector<Instance>& instances = {});
