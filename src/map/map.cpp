@@ -31,6 +31,18 @@ void Map::adopt(std::vector<std::shared_ptr<KeyFrame>> keyframes,
   lines_ = std::move(lines);
 }
 
+Map::Ids Map::nextIds() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {next_keyframe_id_, next_point_id_, next_line_id_};
+}
+
+void Map::continueIdsFrom(const Ids& ids) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  next_keyframe_id_ = std::max(next_keyframe_id_, ids.keyframe);
+  next_point_id_ = std::max(next_point_id_, ids.point);
+  next_line_id_ = std::max(next_line_id_, ids.line);
+}
+
 void Map::adoptKeyFrame(std::shared_ptr<KeyFrame> keyframe) {
   std::lock_guard<std::mutex> lock(mutex_);
   next_keyframe_id_ = std::max(next_keyframe_id_, keyframe->id + 1);

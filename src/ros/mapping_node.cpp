@@ -3,6 +3,7 @@
 #include <geometry_msgs/PoseArray.h>
 #include <nav_msgs/Path.h>
 #include <ply_slam/HandOverMap.h>
+#include <ply_slam/MapForTracker.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
@@ -82,6 +83,8 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
     snapshot_sub_ =
         nh_.subscribe(options_.map_snapshot_topic, 2, &MappingNode::onMapSnapshot, this);
     hand_over_client_ = nh_.serviceClient<HandOverMap>(options_.hand_over_service);
+    map_for_tracker_srv_ =
+        pnh_.advertiseService("map_for_tracker", &MappingNode::onMapForTracker, this);
     startup_timer_ = nh_.createWallTimer(
         ros::WallDuration(1.0),
         [this](const ros::WallTimerEvent&) {
@@ -256,6 +259,32 @@ void MappingNode::askForHandOver(const std::string& when) {
   }
   awaiting_handover_ = ask.response.handing_over;
   ROS_INFO_STREAM("mapping_node: " << when << ": " << ask.response.message);
+}
+
+// A tracker that starts (or restarts: its jobs are numbered from 0 again) gets this side's map
+// once every job before is mapped and every update made has gone out.
+bool MappingNode::onMapForTracker(MapForTracker::Request&, MapForTracker::Response& response) {
+  mapping_thread_->waitIdle();
+  takeMapped();
+  held_jobs_.clear();
+  awaiting_handover_ = false;
+  job_sequence_ = MessageSequence();
+  const MapHandover handover = mapping_->handOverMap();
+  response.success = true;
+  response.map_file = handover.map_file;
+  response.updates_followed = handover.updates_followed;
+  response.loaded_map = handover.loaded_map;
+  response.next_keyframe_id = handover.next_ids.keyframe;
+  response.next_point_id = handover.next_ids.point;
+  response.next_line_id = handover.next_ids.line;
+  response.next_update_sequence = updates_sent_;
+  response.message =
+      handover.map_file.empty()
+          ? "the mapping side's map is empty"
+          : "the mapping side's map: " + std::to_string(mapping_->map().numKeyFrames()) +
+                " keyframes (" + std::to_string(handover.map_file.size() / 1024) + " KiB)";
+  ROS_INFO_STREAM("mapping_node: map_for_tracker: " << response.message);
+  return true;
 }
 
 // The jobs held while the tracker's copy was on its way, but those it holds already.

@@ -11,7 +11,7 @@ TrackingBackEnd TrackingBackEnd::fromOptions(const TrackingNodeOptions& options)
     back_end.segmenter =
         std::make_unique<LiveSegmenter>(std::make_unique<YoloV8Seg>(options.config.segmentation));
   const bool segmented = back_end.segmenter != nullptr;
-  back_end.make_system = [options, segmented](const PinholeCamera& camera) {
+  back_end.make_system = [options, segmented](const PinholeCamera& camera, bool load_map) {
     SystemConfig config = options.config;
     config.camera = camera;
     if (!segmented) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
@@ -19,7 +19,7 @@ TrackingBackEnd TrackingBackEnd::fromOptions(const TrackingNodeOptions& options)
                              : options.mapping_thread ? MappingMode::kOwnThread
                                                       : MappingMode::kInline;
     auto system = std::make_unique<System>(config, mode);
-    if (!options.map.empty()) system->loadMap(options.map, options.localisation_only);
+    if (load_map && !options.map.empty()) system->loadMap(options.map, options.localisation_only);
     return system;
   };
   return back_end;

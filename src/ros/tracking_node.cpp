@@ -57,6 +57,9 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNode
     job_pub_ = pnh_.advertise<MappingJobMsg>("mapping_job", 100);
     mapper_update_sub_ =
         nh_.subscribe(options_.mapper_update_topic, 100, &TrackingNode::onMapperUpdate, this);
+    // Before hand_over_map is offered: mapping_node cannot be asking it meanwhile (each would
+    // wait for the other's single spinner).
+    askMapperForItsMap();
     hand_over_srv_ = pnh_.advertiseService("hand_over_map", &TrackingNode::onHandOverMap, this);
   }
   segmentation_image_pub_ = pnh_.advertise<sensor_msgs::Image>("segmentation_image", 1);
@@ -297,7 +300,7 @@ void TrackingNode::work() {
       // Between frames the mapping thread's results go out too: a loop closed after the last
       // frame must not wait for the next one.
       idle = !queue_cv_.wait_for(lock, kMappedPollPeriod, [this] {
-        return stopping_ || !queue_.empty() || !mapper_updates_.empty();
+        return stopping_ || !queue_.empty() || (system_ && !mapper_updates_.empty());
       });
       if (stopping_) return;  // shutting down: frames still waiting are not tracked
       idle = idle || queue_.empty();
@@ -343,9 +346,17 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
                                                       << camera.cx << " cy " << camera.cy);
   }
   try {
-    system_ = back_end_.make_system(camera);
+    system_ = back_end_.make_system(camera, !mapper_map_);
     if (options_.mapping_apart)
       system_->setJobSink([this](MappingJob job) { outgoing_.push_back(std::move(job)); });
+    if (mapper_map_) {  // a restart: the mapping side's live map, not ~map's file
+      system_->takeOverMap(*mapper_map_, !options_.map.empty() && options_.localisation_only);
+      mapper_map_.reset();
+      ROS_INFO_STREAM("tracking_node: in the mapping side's map: "
+                      << system_->map().numKeyFrames() << " keyframes, "
+                      << system_->map().numMapPoints() << " points; relocalising");
+      return;
+    }
   } catch (const std::exception& e) {
     start_failed_ = true;
     ROS_FATAL_STREAM("tracking_node: " << e.what());
@@ -410,18 +421,48 @@ void TrackingNode::onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   queue_cv_.notify_one();
 }
 
+// Updates wait for the System (made at the first frame, in the map they build on).
 bool TrackingNode::followMapper() {
+  if (!system_) return false;
   std::deque<std::pair<uint64_t, MapUpdate>> updates;
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
     updates.swap(mapper_updates_);
   }
-  if (updates.empty() || !system_) return false;
+  if (updates.empty()) return false;
   const ThreadCpuStopwatch cpu;
   for (const auto& [sequence, update] : updates) system_->followMapUpdate(update);
   updates_followed_ += updates.size();
   longest_follow_cpu_ms_ = std::max(longest_follow_cpu_ms_, cpu.elapsedMs());
   return true;
+}
+
+// A tracker that restarts while mapping_node maps on takes over its map at the first frame; the
+// updates it sent before are not followed.
+void TrackingNode::askMapperForItsMap() {
+  ros::ServiceClient client = nh_.serviceClient<MapForTracker>(options_.mapper_map_service);
+  if (!client.exists()) {
+    ROS_INFO_STREAM("tracking_node: " << client.getService() << " is not up: a map of its own");
+    return;
+  }
+  MapForTracker ask;
+  if (!client.call(ask) || !ask.response.success) {
+    ROS_ERROR_STREAM("tracking_node: "
+                     << client.getService() << " did not answer"
+                     << (ask.response.message.empty() ? std::string() : ": " + ask.response.message)
+                     << "; a map of its own");
+    return;
+  }
+  const MapForTracker::Response& r = ask.response;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    update_floor_ = r.next_update_sequence;
+    resync_updates_ = true;
+  }
+  ROS_INFO_STREAM("tracking_node: " << client.getService() << ": " << r.message);
+  if (r.map_file.empty()) return;
+  mapper_map_ = handoverFromMsg(r.map_file, r.updates_followed, r.loaded_map,
+                                {r.next_keyframe_id, r.next_point_id, r.next_line_id});
 }
 
 void TrackingNode::publishJobs(const ros::Time& stamp) {

@@ -33,6 +33,7 @@ TrackingNodeOptions trackingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "mapping_thread", &o.mapping_thread);
   readParam(pnh, "mapping_apart", &o.mapping_apart);
   readParam(pnh, "mapper_update_topic", &o.mapper_update_topic);
+  readParam(pnh, "mapper_map_service", &o.mapper_map_service);
   // Said at the start, not at the first frame (the system is made then, from camera_info).
   const std::filesystem::path map_file = std::filesystem::path(o.map) / System::kMapFileName;
   if (!o.map.empty() && !std::filesystem::is_regular_file(map_file))

@@ -47,8 +47,20 @@ void MappingSide::takeOver(const MapHandover& handover, const std::vector<double
     throw std::logic_error("MappingSide::takeOver: the map is not empty");
   adopt(MapFileReader::decode(handover.map_file, "the tracker's copy of the map", file_setup_,
                               scales));
+  map_.continueIdsFrom(handover.next_ids);
   loaded_map_ = handover.loaded_map;
   updates_made_ = handover.updates_followed;
+}
+
+MapHandover MappingSide::handOverMap() const {
+  std::lock_guard<std::mutex> lock(map_.updateMutex());
+  MapHandover handover;
+  if (map_.numKeyFrames() != 0)
+    handover.map_file = MapFileWriter::encode(file_setup_, map_, mapper_.places());
+  handover.updates_followed = updates_made_;
+  handover.loaded_map = loaded_map_;
+  handover.next_ids = map_.nextIds();
+  return handover;
 }
 
 void MappingSide::adopt(MapFileContents contents) {

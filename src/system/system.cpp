@@ -388,6 +388,23 @@ void System::loadMap(const std::string& folder, bool localisation_only) {
   if (mapping_) mapping_->loadMap(file, &extractor_.scales());
   loaded_map_ = copy ? copy->checksum : mapping_->loadedMap();
   if (copy) adoptTrackerCopy(std::move(*copy));
+  startInMap(localisation_only);
+}
+
+void System::takeOverMap(const MapHandover& handover, bool localisation_only) {
+  if (mapping_) throw std::logic_error("System::takeOverMap: only with the mapping side apart");
+  if (next_frame_id_ != 0 || tracking_map_->numKeyFrames() != 0)
+    throw std::logic_error("System::takeOverMap: before the first frame, into an empty map");
+  if (!handover.map_file.empty())
+    adoptTrackerCopy(MapFileReader::decode(handover.map_file, "the mapping side's map",
+                                           mapFileSetup(), &extractor_.scales()));
+  tracking_map_->continueIdsFrom(handover.next_ids);
+  loaded_map_ = handover.loaded_map;
+  updates_followed_ = followed_at_last_keyframe_ = handover.updates_followed;
+  if (!handover.map_file.empty()) startInMap(localisation_only);
+}
+
+void System::startInMap(bool localisation_only) {
   tracker_.startLost();
   tracker_.setLocalisationOnly(localisation_only);
   // Keyframes remember the frame they were made from; new frames must not repeat those ids.
@@ -414,6 +431,7 @@ MapHandover System::handOverMap() {
                             places_ ? places_->places() : std::map<long, KeyFramePlace>{});
   handover.updates_followed = updates_followed_;
   handover.loaded_map = loaded_map_;
+  handover.next_ids = tracking_map_->nextIds();
   report_ = TrackerReport{};
   followed_at_last_keyframe_ = updates_followed_;
   return handover;

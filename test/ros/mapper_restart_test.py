@@ -30,14 +30,7 @@ class MapperRestart(unittest.TestCase):
         apart = rospy.get_param("~apart", False)
         work = support.work_dir()
         self.addCleanup(shutil.rmtree, work, True)
-        bag = os.path.join(work, "sequence.bag")
-        support.tum_to_bag(sequence, bag)
-        frames, offline_ate = support.offline_run(sequence, os.path.join(work, "offline"))
-
-        stats = support.StatsListener()
-        support.wait_for_nodes()
-        # 37 frames at rate 0.1: about 12 s of replay.
-        player = subprocess.Popen(["rosbag", "play", "--quiet", "--delay=1", "--rate=0.1", bag])
+        frames, offline_ate, stats, player = support.slow_replay(sequence, work)
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= 3, 60))
         subprocess.run(["rosnode", "kill", MAPPER], check=True, capture_output=True)
         down_at = stats.get("keyframes")

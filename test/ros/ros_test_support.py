@@ -233,3 +233,15 @@ def wait_for_nodes(timeout=30):
             return
         time.sleep(0.2)
     raise AssertionError("tracking_node did not come up")
+
+
+def slow_replay(sequence, work):
+    """The sequence as a bag played at rate 0.1 (37 frames: about 12 s) into nodes that are up,
+    with its offline run: (frames, offline ATE, the tracker's stats, the player's process)."""
+    bag = os.path.join(work, "sequence.bag")
+    tum_to_bag(sequence, bag)
+    frames, offline_ate = offline_run(sequence, os.path.join(work, "offline"))
+    stats = StatsListener()
+    wait_for_nodes()
+    player = subprocess.Popen(["rosbag", "play", "--quiet", "--delay=1", "--rate=0.1", bag])
+    return frames, offline_ate, stats, player

@@ -513,7 +513,7 @@ TEST(SplitMessages, AMappingSideThatStartsAnewTakesOverTheTrackersCopy) {
   const OrbExtractor scales_of(config.orb);
   auto first = std::make_unique<MappingSide>(config, true, true);
   std::unique_ptr<MappingSide> second;
-  constexpr size_t kDown = 40, kUp = 60, kEnd = 120;
+  constexpr size_t kDown = 40, kUp = 60, kCompareFrom = 100, kEnd = 140;
   size_t lost_jobs = 0, mapped_after = 0, handed_over = 0;
   for (size_t i = 0; i < kEnd; ++i) {
     if (i == kDown) first.reset();
@@ -531,6 +531,7 @@ TEST(SplitMessages, AMappingSideThatStartsAnewTakesOverTheTrackersCopy) {
     const RgbdImages images = sequence.load(i, config.camera.depth_factor);
     ASSERT_EQ(apart.process(images).tracking.state, TrackingState::kOk) << "frame " << i;
     MappingSide* mapping = first ? first.get() : second.get();
+    const size_t mapped_before = mapped_after;
     for (; !jobs.empty(); jobs.pop_front()) {
       if (!mapping) {
         ++lost_jobs;
@@ -542,6 +543,8 @@ TEST(SplitMessages, AMappingSideThatStartsAnewTakesOverTheTrackersCopy) {
           fromMsg(throughWire(toMsg(*mapping->mapKeyFrame(job).map_update, "map"))));
       mapped_after += mapping == second.get();
     }
+    // Compared right after a keyframe: the copy's counts since then are not reported yet.
+    if (i >= kCompareFrom && mapped_after != mapped_before) break;
   }
   std::cout << lost_jobs << " jobs lost while no mapping side ran, " << handed_over
             << " keyframes handed over, " << mapped_after << " mapped after\n";
@@ -552,6 +555,73 @@ TEST(SplitMessages, AMappingSideThatStartsAnewTakesOverTheTrackersCopy) {
   bad.updates_followed = -1;
   expectRejectedNaming([&] { fromMsg(bad); }, "updates_followed");
   test::expectSameMap(second->map(), apart.trackerMap(), "the new mapping side and the copy");
+}
+
+// The ids a map taken over gives next are those the giver would have given: ids of landmarks it
+// erased (above every one it kept) are not given again.
+TEST(SplitMessages, ATrackerTakingOverAMapGoesOnAfterItsIds) {
+  System tracker(fr1Config(), MappingMode::kApart);
+  MapHandover handover;  // an empty map whose giver had made and erased a few
+  handover.next_ids = {40, 5000, 70};
+  tracker.takeOverMap(handover, false);
+  const Map::Ids ids = tracker.trackerMap().nextIds();
+  EXPECT_EQ(ids.keyframe, 40);
+  EXPECT_EQ(ids.point, 5000);
+  EXPECT_EQ(ids.line, 70);
+}
+
+// A tracker apart that starts anew while the mapping side goes on (tracking_node restarted): the
+// first tracker runs 60 frames, then a new one takes over the mapping side's map
+// (MappingSide::handOverMap), relocalises at once in it and tracks and extends it with the same
+// mapping side. The mapping side's map and the new tracker's copy end the same, field for field,
+// and no id of the first tracker's is given again.
+TEST(SplitMessages, ATrackerThatStartsAnewTakesOverTheMappingSidesMap) {
+  PLY_SLAM_REQUIRE_SHARED(rpyFolder());
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kOrb));
+  PLY_SLAM_REQUIRE_VOCABULARY(vocabularyPath("", DescriptorKind::kLbd));
+  SystemConfig config = fr1Config();
+  config.loop.enabled = true;
+  const TumSequence sequence(rpyFolder());
+  const OrbExtractor scales_of(config.orb);
+  MappingSide mapping(config, true, true);
+  constexpr size_t kRestart = 60, kCompareFrom = 100, kEnd = 140;
+  auto tracker = std::make_unique<System>(config, MappingMode::kApart);
+  std::deque<MappingJob> jobs;
+  Map::Ids ids_before;
+  size_t first_tracked = kEnd, mapped_after = 0;
+  for (size_t i = 0; i < kEnd; ++i) {
+    if (i == kRestart) {
+      ids_before = tracker->trackerMap().nextIds();
+      tracker = std::make_unique<System>(config, MappingMode::kApart);
+      MapSnapshot sent;  // the same fields as ~map_for_tracker's answer
+      sent.handover = mapping.handOverMap();
+      tracker->takeOverMap(fromMsg(throughWire(toMsg(sent, "map"))).handover, false);
+      EXPECT_THROW(tracker->takeOverMap(sent.handover, false), std::logic_error);  // not empty
+    }
+    tracker->setJobSink([&jobs](MappingJob job) { jobs.push_back(std::move(job)); });
+    const size_t jobs_before = mapped_after;
+    const RgbdImages images = sequence.load(i, config.camera.depth_factor);
+    const FrameResult r = tracker->process(images);
+    if (i >= kRestart && r.tracking.state == TrackingState::kOk)
+      first_tracked = std::min(first_tracked, i);
+    for (; !jobs.empty(); jobs.pop_front()) {
+      const MappingJob job = fromMsg(throughWire(toMsg(jobs.front(), "map")),
+                                     {&scales_of.scales(), images.rgb.size()});
+      tracker->followMapUpdate(
+          fromMsg(throughWire(toMsg(*mapping.mapKeyFrame(job).map_update, "map"))));
+      mapped_after += i >= kRestart;
+    }
+    // Compared right after a keyframe: the copy's counts since then are not reported yet.
+    if (i >= kCompareFrom && jobs_before != mapped_after) break;
+  }
+  std::cout << "the new tracker tracked from frame " << first_tracked << ", " << mapped_after
+            << " keyframes mapped after the restart\n";
+  EXPECT_EQ(first_tracked, kRestart);
+  EXPECT_GE(mapped_after, 3u);
+  // Ids of points the first tracker made and the mapping side erased are not given again.
+  for (const auto& p : mapping.map().mapPoints())
+    if (p->first_keyframe_id >= ids_before.keyframe) EXPECT_GE(p->id, ids_before.point);
+  test::expectSameMap(tracker->trackerMap(), mapping.map(), "the new tracker's copy");
 }
 
 }  // namespace

@@ -80,6 +80,14 @@ class Map {
              std::vector<std::shared_ptr<MapPoint>> points,
              std::vector<std::shared_ptr<MapLine>> lines);
 
+  // The ids the next keyframe, point and line get. A map that takes another's over goes on
+  // after that one's (continueIdsFrom): ids of what it erased are never given again.
+  struct Ids {
+    long keyframe = 0, point = 0, line = 0;
+  };
+  Ids nextIds() const;
+  void continueIdsFrom(const Ids& ids);
+
   std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;
   size_t numKeyFrames() const;

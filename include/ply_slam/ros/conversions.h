@@ -50,9 +50,12 @@ struct MapSnapshot {
   Trajectory trajectory;
   MapHandover handover;
 };
-// Throws std::invalid_argument as the keyframe and pose conversions do, and for a negative
-// updates_followed.
+// Throws std::invalid_argument as the keyframe and pose conversions do, and as handoverFromMsg.
 MapSnapshot fromMsg(const MapSnapshotMsg& msg);
+// A handover's fields from a message (MapSnapshotMsg, MapForTracker.srv); throws
+// std::invalid_argument naming a negative count or id.
+MapHandover handoverFromMsg(const std::vector<uint8_t>& map_file, int64_t updates_followed,
+                            uint64_t loaded_map, const Map::Ids& next_ids);
 // Header and poses in `world_frame`; the sequence numbers and the stamp are the sender's.
 MapSnapshotMsg toMsg(const MapSnapshot& snapshot, const std::string& world_frame);
 

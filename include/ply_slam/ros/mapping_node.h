@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <ply_slam/KeyFrameMsg.h>
+#include <ply_slam/MapForTracker.h>
 #include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <ply_slam/MappingJobMsg.h>
@@ -57,6 +58,9 @@ class MappingNode {
   void askForHandOver(const std::string& when);
   void takeOver(const MapSnapshot& snapshot, uint64_t next_job);
   void mapHeldJobs(uint64_t first);
+  // ~map_for_tracker: a tracker apart that starts gets this side's map (it takes it over when it
+  // restarted while this side went on).
+  bool onMapForTracker(MapForTracker::Request& request, MapForTracker::Response& response);
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
@@ -125,6 +129,7 @@ class MappingNode {
   ros::WallTimer mapped_timer_;
   MessageSequence job_sequence_;
   ros::ServiceClient hand_over_client_;
+  ros::ServiceServer map_for_tracker_srv_;
   bool awaiting_handover_ = false;
   std::vector<std::pair<uint64_t, MappingJob>> held_jobs_;  // by sequence, while awaiting
   uint64_t updates_sent_ = 0, loops_closed_ = 0;

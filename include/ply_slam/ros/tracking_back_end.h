@@ -14,9 +14,11 @@ namespace ply_slam {
 // feeds it frames and publishes what comes out. The System is made at the first frame (the
 // intrinsics may come from camera_info), so the node gets how to make it.
 struct TrackingBackEnd {
-  // The System for `camera`, already in the map of ~map when one is given; throws when it
-  // cannot be made (e.g. the map does not load).
-  using SystemFactory = std::function<std::unique_ptr<System>(const PinholeCamera& camera)>;
+  // The System for `camera`, already in the map of ~map when one is given and `load_map` (not
+  // when it takes over a live mapping side's map instead); throws when it cannot be made (e.g.
+  // the map does not load).
+  using SystemFactory =
+      std::function<std::unique_ptr<System>(const PinholeCamera& camera, bool load_map)>;
 
   std::unique_ptr<LiveSegmenter> segmenter;  // null: the config names no model
   SystemFactory make_system;

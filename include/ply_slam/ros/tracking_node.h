@@ -5,6 +5,7 @@
 #include <message_filters/synchronizer.h>
 #include <nav_msgs/Path.h>
 #include <ply_slam/HandOverMap.h>
+#include <ply_slam/MapForTracker.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
@@ -76,6 +77,8 @@ class TrackingNode {
   // The worker's part: updates the mapping side sent before `next_update` are no longer
   // followed, the copy goes out with the snapshot. Answers whether it handed over, and what.
   Answer handOver(uint64_t next_job, uint64_t next_update);
+  // ~mapping_apart, at construction: mapping_node's map (mapper_map_) when it is not empty.
+  void askMapperForItsMap();
   void enqueue(Job job);
   void publishSnapshot();
   void publishMapped(const std::vector<MappedKeyFrame>& mapped);
@@ -105,6 +108,9 @@ class TrackingNode {
   bool start_failed_ = false;           // the System could not be made: no frame is tracked
   std::vector<MappingJob> outgoing_;    // ~mapping_apart: the frame's keyframe, to send
   double longest_follow_cpu_ms_ = 0.0;  // following the mapping side's updates, between frames
+  // ~mapping_apart: the map of a mapping_node that went on while this node restarted, taken over
+  // at the first frame (set before the worker starts).
+  std::optional<MapHandover> mapper_map_;
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
   RgbdMessageDecoder decoder_;

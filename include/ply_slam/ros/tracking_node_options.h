@@ -39,6 +39,9 @@ struct TrackingNodeOptions {
   // ~mapping_job, the tracker's copy of the map follows the updates on mapper_update_topic.
   bool mapping_apart = false;
   std::string mapper_update_topic = "mapping_node/map_update";
+  // ~mapping_apart: asked at the start for the mapping side's map; when it is not empty (this
+  // node restarted) the tracker takes it over instead of ~map.
+  std::string mapper_map_service = "mapping_node/map_for_tracker";
 };
 
 // Throws ConfigError for a missing or bad ~config (as configFromParams) and std::invalid_argument

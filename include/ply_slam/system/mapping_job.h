@@ -8,6 +8,7 @@
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/key_frame_packet.h"
+#include "ply_slam/map/map.h"
 #include "ply_slam/map/tracker_report.h"
 #include "ply_slam/mapping/loop_corrector.h"
 
@@ -44,13 +45,15 @@ struct MappingJob {
   }
 };
 
-// What a tracker apart gives a mapping side that starts anew (a mapping process restarted, or
-// one that missed jobs): its copy of the map, which holds all its jobs so far, and where the two
-// stand (System::handOverMap, MappingSide::takeOver).
+// What one side apart gives the other when that one starts anew: a tracker to a mapping side
+// that restarted or missed jobs (System::handOverMap, MappingSide::takeOver: the copy holds all
+// its jobs so far), a mapping side to a tracker that restarted (MappingSide::handOverMap,
+// System::takeOverMap).
 struct MapHandover {
-  std::vector<uint8_t> map_file;  // the copy as a map file (MapFileWriter::encode)
-  long updates_followed = 0;      // updates the copy followed: the mapping side counts on from it
+  std::vector<uint8_t> map_file;  // the map as a map file (MapFileWriter::encode)
+  long updates_followed = 0;      // updates made and followed: the other side counts on from it
   uint64_t loaded_map = 0;        // the map file the tracker started from (MappingJob::loaded_map)
+  Map::Ids next_ids;              // the map's: its erased landmarks' ids are not given again
 };
 
 // What the mapping side made of one keyframe, for whoever keeps a copy of the map (dense maps,

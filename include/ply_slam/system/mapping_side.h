@@ -67,6 +67,10 @@ class MappingSide {
   // those the copy followed. Throws std::runtime_error naming the fault (MapFileReader), the
   // side unchanged; std::logic_error when the map is not empty.
   void takeOver(const MapHandover& handover, const std::vector<double>* scales);
+  // For a tracker apart that starts anew while this side goes on (tracking_node restarted): the
+  // map with its place records, the updates made and the map file it started from
+  // (System::takeOverMap). Between two jobs; an empty map_file when the map is empty.
+  MapHandover handOverMap() const;
   // The checksum of the map file loaded (MapFileContents::checksum); 0: started empty.
   uint64_t loadedMap() const { return loaded_map_; }
   // Writes the map with its place records into `file` (MapFileWriter) under the map's lock;

@@ -109,6 +109,11 @@ class System {
   // anew from it (MappingSide::takeOver); what the tracker did since the last keyframe is in it,
   // so the next job's report starts from here. std::logic_error in the other modes.
   MapHandover handOverMap();
+  // kApart, before the first frame: the tracker restarted while the mapping side went on; its
+  // copy becomes the mapping side's map (MappingSide::handOverMap), in which it relocalises as
+  // in a loaded map (loadMap). Throws std::runtime_error naming the fault, the system unchanged;
+  // std::logic_error after the first frame, with a map, or in the other modes.
+  void takeOverMap(const MapHandover& handover, bool localisation_only);
 
   // rgb: 8UC3 BGR; depth: 32FC1 metres (0 or NaN = invalid); both of the configured size.
   // Dynamic features are left out as config.dynamic.mode says (PAPER.md §3.2).
@@ -208,6 +213,8 @@ class System {
   MapFileSetup mapFileSetup() const;
   // loadMap's read map into the tracker's copy (and its keyframes into the place database).
   void adoptTrackerCopy(MapFileContents copy);
+  // After a map was taken: tracking starts lost, frame ids go on after the map's.
+  void startInMap(bool localisation_only);
   // followMapper's whole-map update (after a loop or a global BA): keyframes the mapping side
   // has not seen move as the one before them moved (carryAlong).
   void followWholeMap(const MapUpdate& update);

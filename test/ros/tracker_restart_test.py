@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""rostest: fr1_xyz_37 played slowly into both nodes with the mapping side in mapping_node
+(tracking_node ~mapping_apart, mapping_node ~map_keyframes); tracking_node is killed a third of the
+way in and started again a few frames later. The restarted tracker must take over mapping_node's
+map (~map_for_tracker), relocalise in it at its first frame and extend it: the map mapping_node
+saves holds the first tracker's first keyframe and the new tracker's keyframes (ids after the
+first tracker's, none given twice), loads again, and every pose it received is in one world (ATE
+as offline)."""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+
+import ros_test_support as support
+
+TRACKER = "/ply_slam/tracking_node"
+SAVE_MAP = "/ply_slam/mapping_node/save_map"
+
+
+class TrackerRestart(unittest.TestCase):
+    def test_restarted_tracker_goes_on_in_the_mappers_map(self):
+        sequence = support.shared_path(rospy.get_param("~sequence"))
+        work = support.work_dir()
+        self.addCleanup(shutil.rmtree, work, True)
+        frames, offline_ate, stats, player = support.slow_replay(sequence, work)
+        self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= 3, 60))
+        first_keyframes = stats.get("keyframes")
+        first_tracked = stats.get("tracked")
+        subprocess.run(["rosnode", "kill", TRACKER], check=True, capture_output=True)
+        time.sleep(2)  # frames go by untracked
+        stats.values = {}
+        tracker = subprocess.Popen([support.tool("tracking_node"), "__name:=tracking_node",
+                                    "__ns:=/ply_slam"])
+        self.addCleanup(tracker.terminate)
+        self.assertEqual(player.wait(timeout=120), 0)
+        time.sleep(3)  # the last frames are tracked, their keyframes mapped
+        self.assertTrue(stats.wait_until(lambda s: s.get("tracked") > 0, 30),
+                        "the restarted tracker tracked nothing: %s" % stats.values)
+        later = stats.values.copy()
+
+        trajectory = os.path.join(work, "trajectory.txt")
+        message = support.save_trajectory(trajectory)
+        ate = support.ate_rmse(sequence, trajectory)
+        folder = os.path.join(work, "map")
+        SaveToPath = support.import_service_type()
+        rospy.wait_for_service(SAVE_MAP, timeout=30)
+        saved = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(folder)
+        with open(os.path.join(folder, "keyframes.csv")) as f:
+            ids = [int(row["id"]) for row in csv.DictReader(f)]
+        print("first tracker: %d tracked, %d keyframes; restarted: %s; trajectory: %s, ATE %.6f m "
+              "over %d (offline %.6f); map: %s, keyframe ids %s" % (
+                  first_tracked, first_keyframes, later, message, ate["rmse"], ate["pairs"],
+                  offline_ate, saved.message, ids))
+        self.assertEqual(later.get("lost", 0), 0, "the restarted tracker did not relocalise at once")
+        self.assertGreater(later.get("keyframes", 0), 0, "the restarted tracker made no keyframe")
+        self.assertEqual(ate["pairs"], first_tracked + later["tracked"])
+        self.assertLessEqual(ate["rmse"], 1.5 * offline_ate)
+        self.assertIn(0, ids, "the first tracker's first keyframe is not in the map")
+        self.assertGreaterEqual(max(ids), first_keyframes, "no keyframe of the new tracker")
+        self.assertEqual(len(ids), len(set(ids)))
+        part = os.path.join(work, "again")
+        subprocess.run([support.tool("ply_slam_tum"), "--sequence", sequence, "--config",
+                        os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out",
+                        part, "--max-frames", "3", "--map", folder], check=True,
+                       capture_output=True)
+        with open(os.path.join(part, "summary.json")) as f:
+            self.assertEqual(json.load(f)["map"]["first_tracked_frame"], 0)
+
+
+if __name__ == "__main__":
+    rospy.init_node("tracker_restart_test")
+    rostest.rosrun("ply_slam", "tracker_restart_test", TrackerRestart, sys.argv)
