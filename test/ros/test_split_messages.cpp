@@ -435,7 +435,7 @@ TEST(SplitMessages, ATrackerAndAMappingSideApartStartFromOneSavedMap) {
   config.loop.enabled = true;
   const TumSequence sequence(rpyFolder());
   const TempDir saved;
-  constexpr size_t kMapped = 60, kLater = 140;
+  constexpr size_t kMapped = 40, kLater = 90;
   {
     System mapper(config);
     for (size_t i = 0; i < kMapped; ++i)
@@ -498,7 +498,7 @@ TEST(SplitMessages, ATrackerAndAMappingSideApartStartFromOneSavedMap) {
 }
 
 // A mapping side that starts anew while the tracker apart goes on (mapping_node restarted): the
-// first one maps 40 frames, then is gone for 20 (their jobs lost), then a new one takes over the
+// first one maps 30 frames, then is gone for 15 (their jobs lost), then a new one takes over the
 // tracker's copy (System::handOverMap) and maps the rest. The copy follows the new side's
 // updates, and the two end with the same map, field for field, the keyframes made while no
 // mapping side ran included.
@@ -513,7 +513,7 @@ TEST(SplitMessages, AMappingSideThatStartsAnewTakesOverTheTrackersCopy) {
   const OrbExtractor scales_of(config.orb);
   auto first = std::make_unique<MappingSide>(config, true, true);
   std::unique_ptr<MappingSide> second;
-  constexpr size_t kDown = 40, kUp = 60, kCompareFrom = 100, kEnd = 140;
+  constexpr size_t kDown = 30, kUp = 45, kCompareFrom = 70, kEnd = 110;
   size_t lost_jobs = 0, mapped_after = 0, handed_over = 0;
   for (size_t i = 0; i < kEnd; ++i) {
     if (i == kDown) first.reset();
@@ -571,7 +571,7 @@ TEST(SplitMessages, ATrackerTakingOverAMapGoesOnAfterItsIds) {
 }
 
 // A tracker apart that starts anew while the mapping side goes on (tracking_node restarted): the
-// first tracker runs 60 frames, then a new one takes over the mapping side's map
+// first tracker runs 45 frames, then a new one takes over the mapping side's map
 // (MappingSide::handOverMap), relocalises at once in it and tracks and extends it with the same
 // mapping side. The mapping side's map and the new tracker's copy end the same, field for field,
 // and no id of the first tracker's is given again.
@@ -584,7 +584,7 @@ TEST(SplitMessages, ATrackerThatStartsAnewTakesOverTheMappingSidesMap) {
   const TumSequence sequence(rpyFolder());
   const OrbExtractor scales_of(config.orb);
   MappingSide mapping(config, true, true);
-  constexpr size_t kRestart = 60, kCompareFrom = 100, kEnd = 140;
+  constexpr size_t kRestart = 45, kCompareFrom = 70, kEnd = 110;
   auto tracker = std::make_unique<System>(config, MappingMode::kApart);
   std::deque<MappingJob> jobs;
   Map::Ids ids_before;
