@@ -13,7 +13,7 @@ PLY_SLAM_PACKAGES=(
   libopencv-dev libopencv-contrib-dev libceres-dev libeigen3-dev libyaml-cpp-dev
   libgtest-dev googletest opencv-doc
   # ROS 1 layer (nodes, messages, rostest) and scripts/tum_to_bag.py, rviz
-  ros-base-dev libroscpp-dev librosbag-dev python3-rosbag rosbash ros-message-generation
+  ros-base-dev libroscpp-dev librosbag-dev python3-rosbag rosbash topic-tools ros-message-generation
   ros-message-runtime librostest-dev python3-rostest ros-std-msgs ros-std-srvs ros-sensor-msgs
   ros-geometry-msgs ros-nav-msgs ros-visualization-msgs libstd-msgs-dev libstd-srvs-dev
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev

@@ -85,12 +85,11 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
     hand_over_client_ = nh_.serviceClient<HandOverMap>(options_.hand_over_service);
     map_for_tracker_srv_ =
         pnh_.advertiseService("map_for_tracker", &MappingNode::onMapForTracker, this);
-    startup_timer_ = nh_.createWallTimer(
-        ros::WallDuration(1.0),
-        [this](const ros::WallTimerEvent&) {
-          if (hand_over_client_.exists()) askForHandOver("at the start");
-        },
-        true);
+    // A job lost last shows no gap until the next one: after kQuietJobs without jobs (the start
+    // included) the tracker is asked once whether jobs went by.
+    last_job_ = ros::WallTime::now();
+    quiet_timer_ = nh_.createWallTimer(ros::WallDuration(0.5),
+                                       [this](const ros::WallTimerEvent&) { checkWhenQuiet(); });
   } else {
     keyframe_sub_ = nh_.subscribe(options_.keyframe_topic, 100, &MappingNode::onKeyFrame, this);
     update_sub_ = nh_.subscribe(options_.map_update_topic, 100, &MappingNode::onMapUpdate, this);
@@ -226,28 +225,46 @@ void MappingNode::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) {
     return;
   }
   const uint64_t sequence = msg->sequence;
-  if (awaiting_handover_) {  // mapped after the tracker's copy, if not in it
+  last_job_ = ros::WallTime::now();
+  quiet_checked_ = false;
+  if (awaiting_handover_) {                   // mapped after the tracker's copy, if not in it
+    if (held_jobs_.size() >= kMaxHeldJobs) {  // the copy is long in coming: memory stays bounded
+      bad_input_.report("mapping_job", "no handover yet: dropped held job " +
+                                           std::to_string(held_jobs_.front().first));
+      held_jobs_.erase(held_jobs_.begin());
+    }
     held_jobs_.emplace_back(sequence, std::move(job));
     return;
   }
-  if (const uint64_t missed = job_sequence_.receive(sequence)) {
+  const uint64_t first_missing = job_sequence_.expected();
+  if (sequence > first_missing) {
     // The job's report builds on the missed ones: the tracker's copy, which holds them, comes.
     held_jobs_.emplace_back(sequence, std::move(job));
-    askForHandOver("after missing " + std::to_string(missed) + " jobs");
+    askForHandOver("after missing " + std::to_string(sequence - first_missing) + " jobs",
+                   first_missing);
     if (!awaiting_handover_) mapHeldJobs(0);  // no answer: the map goes on without them
     return;
   }
+  job_sequence_.receive(sequence);
   mapping_thread_->push(std::move(job));
   noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
 }
 
+void MappingNode::checkWhenQuiet() {
+  if (awaiting_handover_ || quiet_checked_ || ros::WallTime::now() - last_job_ < kQuietJobs) return;
+  quiet_checked_ = true;
+  if (hand_over_client_.exists())
+    askForHandOver(std::to_string(kQuietJobs.toSec()) + " s without jobs",
+                   job_sequence_.expected());
+}
+
 // Every update made so far goes out first: those the tracker has not followed when it hands
 // over are dropped there (their numbers are below the one asked with).
-void MappingNode::askForHandOver(const std::string& when) {
+void MappingNode::askForHandOver(const std::string& when, uint64_t next_job) {
   mapping_thread_->waitIdle();
   takeMapped();
   HandOverMap ask;
-  ask.request.next_job_sequence = job_sequence_.expected();
+  ask.request.next_job_sequence = next_job;
   ask.request.next_update_sequence = updates_sent_;
   if (!hand_over_client_.call(ask) || !ask.response.success) {
     ROS_ERROR_STREAM("mapping_node: asked "

@@ -53,11 +53,13 @@ class MappingNode {
 
  private:
   void keepLoadedMap();
-  // ~map_keyframes: asks the tracker whether jobs went by (a restart, a gap); if so the tracker's
-  // copy comes on ~map_snapshot and jobs wait (held_jobs_) until takeOver.
-  void askForHandOver(const std::string& when);
+  // ~map_keyframes: asks the tracker whether jobs went by from `next_job` on (a restart, a gap);
+  // if so the tracker's copy comes on ~map_snapshot and jobs wait (held_jobs_) until takeOver.
+  void askForHandOver(const std::string& when, uint64_t next_job);
   void takeOver(const MapSnapshot& snapshot, uint64_t next_job);
   void mapHeldJobs(uint64_t first);
+  // askForHandOver once after kQuietJobs without a job (a job lost last shows no gap).
+  void checkWhenQuiet();
   // ~map_for_tracker: a tracker apart that starts gets this side's map (it takes it over when it
   // restarted while this side went on).
   bool onMapForTracker(MapForTracker::Request& request, MapForTracker::Response& response);
@@ -132,6 +134,11 @@ class MappingNode {
   ros::ServiceServer map_for_tracker_srv_;
   bool awaiting_handover_ = false;
   std::vector<std::pair<uint64_t, MappingJob>> held_jobs_;  // by sequence, while awaiting
+  static constexpr size_t kMaxHeldJobs = 30;                // ~2.5 MB each at 640x480
+  inline static const ros::WallDuration kQuietJobs{2.0};
+  ros::WallTime last_job_;
+  bool quiet_checked_ = false;
+  ros::WallTimer quiet_timer_;
   uint64_t updates_sent_ = 0, loops_closed_ = 0;
   ros::ServiceClient resend_client_;
   // tracking_node's ~save_map: without ~map_keyframes the map file that loads again comes from

@@ -1,0 +1,62 @@
+#!/usr/bin/python3
+"""rostest: fr1_xyz_37 played slowly into both nodes with the mapping side in mapping_node, the
+tracker's jobs reaching it through topic_tools/drop, which loses one of every three. At each gap
+mapping_node must ask the tracker to hand over its copy of the map and map on from it: every
+frame tracked, every keyframe the tracker made in the map mapping_node saves (the lost jobs'
+keyframes too), the trajectory as offline, and the map file loads again."""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+
+import ros_test_support as support
+
+SAVE_MAP = "/ply_slam/mapping_node/save_map"
+
+
+class JobGap(unittest.TestCase):
+    def test_mapper_takes_over_the_trackers_copy_at_each_gap(self):
+        sequence = support.shared_path(rospy.get_param("~sequence"))
+        work = support.work_dir()
+        self.addCleanup(shutil.rmtree, work, True)
+        frames, offline_ate, stats, player = support.slow_replay(sequence, work)
+        self.assertEqual(player.wait(timeout=120), 0)
+        stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 60)
+        time.sleep(5)  # 2 s without jobs: mapping_node asks for what went by last
+
+        trajectory = os.path.join(work, "trajectory.txt")
+        message = support.save_trajectory(trajectory)
+        ate = support.ate_rmse(sequence, trajectory)
+        folder = os.path.join(work, "map")
+        SaveToPath = support.import_service_type()
+        rospy.wait_for_service(SAVE_MAP, timeout=30)
+        saved = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(folder)
+        with open(os.path.join(folder, "keyframes.csv")) as f:
+            ids = [int(row["id"]) for row in csv.DictReader(f)]
+        print("stats %s; trajectory: %s, ATE %.6f m (offline %.6f); map: %s, keyframe ids %s" % (
+            stats.values, message, ate["rmse"], offline_ate, saved.message, ids))
+        self.assertEqual(stats.get("tracked"), frames)
+        self.assertGreaterEqual(stats.get("keyframes"), 5, "too few jobs for gaps to matter")
+        self.assertEqual(sorted(ids), list(range(int(stats.get("keyframes")))),
+                         "keyframes of lost jobs are not in mapping_node's map")
+        self.assertLessEqual(ate["rmse"], 1.5 * offline_ate)
+        self.assertIn("dense maps lack", saved.message)  # the lost jobs' images are gone
+        part = os.path.join(work, "again")
+        subprocess.run([support.tool("ply_slam_tum"), "--sequence", sequence, "--config",
+                        os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out",
+                        part, "--max-frames", "3", "--map", folder], check=True,
+                       capture_output=True)
+        with open(os.path.join(part, "summary.json")) as f:
+            self.assertEqual(json.load(f)["map"]["keyframes_loaded"], len(ids))
+
+
+if __name__ == "__main__":
+    rospy.init_node("job_gap_test")
+    rostest.rosrun("ply_slam", "job_gap_test", JobGap, sys.argv)
