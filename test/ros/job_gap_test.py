@@ -4,11 +4,7 @@ tracker's jobs reaching it through topic_tools/drop, which loses one of every th
 mapping_node must ask the tracker to hand over its copy of the map and map on from it: every
 frame tracked, every keyframe the tracker made in the map mapping_node saves (the lost jobs'
 keyframes too), the trajectory as offline, and the map file loads again."""
-import csv
-import json
-import os
 import shutil
-import subprocess
 import sys
 import time
 import unittest
@@ -18,7 +14,6 @@ import rostest
 
 import ros_test_support as support
 
-SAVE_MAP = "/ply_slam/mapping_node/save_map"
 
 
 class JobGap(unittest.TestCase):
@@ -31,15 +26,7 @@ class JobGap(unittest.TestCase):
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 60)
         time.sleep(5)  # 2 s without jobs: mapping_node asks for what went by last
 
-        trajectory = os.path.join(work, "trajectory.txt")
-        message = support.save_trajectory(trajectory)
-        ate = support.ate_rmse(sequence, trajectory)
-        folder = os.path.join(work, "map")
-        SaveToPath = support.import_service_type()
-        rospy.wait_for_service(SAVE_MAP, timeout=30)
-        saved = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(folder)
-        with open(os.path.join(folder, "keyframes.csv")) as f:
-            ids = [int(row["id"]) for row in csv.DictReader(f)]
+        message, ate, saved, ids, folder = support.saved_trajectory_and_map(sequence, work)
         print("stats %s; trajectory: %s, ATE %.6f m (offline %.6f); map: %s, keyframe ids %s" % (
             stats.values, message, ate["rmse"], offline_ate, saved.message, ids))
         self.assertEqual(stats.get("tracked"), frames)
@@ -48,13 +35,8 @@ class JobGap(unittest.TestCase):
                          "keyframes of lost jobs are not in mapping_node's map")
         self.assertLessEqual(ate["rmse"], 1.5 * offline_ate)
         self.assertIn("dense maps lack", saved.message)  # the lost jobs' images are gone
-        part = os.path.join(work, "again")
-        subprocess.run([support.tool("ply_slam_tum"), "--sequence", sequence, "--config",
-                        os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out",
-                        part, "--max-frames", "3", "--map", folder], check=True,
-                       capture_output=True)
-        with open(os.path.join(part, "summary.json")) as f:
-            self.assertEqual(json.load(f)["map"]["keyframes_loaded"], len(ids))
+        self.assertEqual(support.load_saved_map(sequence, folder, work)["keyframes_loaded"],
+                         len(ids))
 
 
 if __name__ == "__main__":

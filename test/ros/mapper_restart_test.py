@@ -6,9 +6,6 @@ a map that holds the keyframes it never received itself, and say its dense maps 
 With ~apart (the mapping side in mapping_node) the restarted node asks the tracker to hand over
 its copy of the map, maps the later keyframes on from it (the tracker follows its updates) and
 writes the map file itself, which must load again."""
-import json
-import csv
-import os
 import shutil
 import subprocess
 import sys
@@ -21,7 +18,6 @@ import rostest
 import ros_test_support as support
 
 MAPPER = "/ply_slam/mapping_node"
-SAVE_MAP = MAPPER + "/save_map"
 
 
 class MapperRestart(unittest.TestCase):
@@ -44,15 +40,7 @@ class MapperRestart(unittest.TestCase):
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 60)
         time.sleep(2)  # the last messages reach the mapper
 
-        trajectory = os.path.join(work, "trajectory.txt")
-        message = support.save_trajectory(trajectory)  # fails the test when not whole
-        ate = support.ate_rmse(sequence, trajectory)
-        folder = os.path.join(work, "map")
-        SaveToPath = support.import_service_type()
-        rospy.wait_for_service(SAVE_MAP, timeout=30)
-        saved = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(folder)
-        with open(os.path.join(folder, "keyframes.csv")) as f:
-            ids = [int(row["id"]) for row in csv.DictReader(f)]
+        message, ate, saved, ids, folder = support.saved_trajectory_and_map(sequence, work)
         print("stats %s; trajectory: %s, ATE %.6f m (offline %.6f); map: %s" % (
             stats.values, message, ate["rmse"], offline_ate, saved.message))
         self.assertEqual(stats.get("tracked"), frames)
@@ -63,13 +51,7 @@ class MapperRestart(unittest.TestCase):
         self.assertIn("dense maps lack", saved.message)
         if apart:  # the new mapping side mapped on, the tracker followed, the file loads
             self.assertGreater(stats.get("updates_followed"), followed_at_restart)
-            part = os.path.join(work, "again")
-            subprocess.run([support.tool("ply_slam_tum"), "--sequence", sequence, "--config",
-                            os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml"),
-                            "--out", part, "--max-frames", "3", "--map", folder],
-                           check=True, capture_output=True)
-            with open(os.path.join(part, "summary.json")) as f:
-                loaded = json.load(f)["map"]
+            loaded = support.load_saved_map(sequence, folder, work)
             print("the map mapping_node wrote: %s" % loaded)
             self.assertEqual(loaded["first_tracked_frame"], 0)
             self.assertEqual(loaded["keyframes_loaded"], len(ids))

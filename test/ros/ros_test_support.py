@@ -1,5 +1,6 @@
 """Shared pieces of the rostest integration tests: where the shared data is, offline reference
 runs, bag conversion, the tracking node's statistics and the mapper's save service."""
+import csv
 import json
 import math
 import os
@@ -245,3 +246,30 @@ def slow_replay(sequence, work):
     wait_for_nodes()
     player = subprocess.Popen(["rosbag", "play", "--quiet", "--delay=1", "--rate=0.1", bag])
     return frames, offline_ate, stats, player
+
+
+def saved_trajectory_and_map(sequence, work):
+    """mapping_node's trajectory and map saved into `work`: (save_trajectory's message, its ATE
+    (ate_rmse), save_map's response, the ids in its keyframes.csv, the folder)."""
+    trajectory = os.path.join(work, "trajectory.txt")
+    message = save_trajectory(trajectory)  # fails the test when not whole
+    ate = ate_rmse(sequence, trajectory)
+    folder = os.path.join(work, "map")
+    SaveToPath = import_service_type()
+    service = "/ply_slam/mapping_node/save_map"
+    rospy.wait_for_service(service, timeout=30)
+    saved = rospy.ServiceProxy(service, SaveToPath)(folder)
+    with open(os.path.join(folder, "keyframes.csv")) as f:
+        ids = [int(row["id"]) for row in csv.DictReader(f)]
+    return message, ate, saved, ids, folder
+
+
+def load_saved_map(sequence, folder, work):
+    """ply_slam_tum on the sequence's first 3 frames in the map saved in `folder`: the "map"
+    part of its summary.json (keyframes_loaded, first_tracked_frame, ...)."""
+    out = os.path.join(work, "again")
+    subprocess.run([tool("ply_slam_tum"), "--sequence", sequence, "--config",
+                    os.path.join(PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out", out,
+                    "--max-frames", "3", "--map", folder], check=True, capture_output=True)
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)["map"]

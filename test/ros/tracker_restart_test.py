@@ -6,9 +6,6 @@ map (~map_for_tracker), relocalise in it at its first frame and extend it: the m
 saves holds the first tracker's first keyframe and the new tracker's keyframes (ids after the
 first tracker's, none given twice), loads again, and every pose it received is in one world (ATE
 as offline)."""
-import csv
-import json
-import os
 import shutil
 import subprocess
 import sys
@@ -21,7 +18,6 @@ import rostest
 import ros_test_support as support
 
 TRACKER = "/ply_slam/tracking_node"
-SAVE_MAP = "/ply_slam/mapping_node/save_map"
 
 
 class TrackerRestart(unittest.TestCase):
@@ -45,15 +41,7 @@ class TrackerRestart(unittest.TestCase):
                         "the restarted tracker tracked nothing: %s" % stats.values)
         later = stats.values.copy()
 
-        trajectory = os.path.join(work, "trajectory.txt")
-        message = support.save_trajectory(trajectory)
-        ate = support.ate_rmse(sequence, trajectory)
-        folder = os.path.join(work, "map")
-        SaveToPath = support.import_service_type()
-        rospy.wait_for_service(SAVE_MAP, timeout=30)
-        saved = rospy.ServiceProxy(SAVE_MAP, SaveToPath)(folder)
-        with open(os.path.join(folder, "keyframes.csv")) as f:
-            ids = [int(row["id"]) for row in csv.DictReader(f)]
+        message, ate, saved, ids, folder = support.saved_trajectory_and_map(sequence, work)
         print("first tracker: %d tracked, %d keyframes; restarted: %s; trajectory: %s, ATE %.6f m "
               "over %d (offline %.6f); map: %s, keyframe ids %s" % (
                   first_tracked, first_keyframes, later, message, ate["rmse"], ate["pairs"],
@@ -65,13 +53,7 @@ class TrackerRestart(unittest.TestCase):
         self.assertIn(0, ids, "the first tracker's first keyframe is not in the map")
         self.assertGreaterEqual(max(ids), first_keyframes, "no keyframe of the new tracker")
         self.assertEqual(len(ids), len(set(ids)))
-        part = os.path.join(work, "again")
-        subprocess.run([support.tool("ply_slam_tum"), "--sequence", sequence, "--config",
-                        os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out",
-                        part, "--max-frames", "3", "--map", folder], check=True,
-                       capture_output=True)
-        with open(os.path.join(part, "summary.json")) as f:
-            self.assertEqual(json.load(f)["map"]["first_tracked_frame"], 0)
+        self.assertEqual(support.load_saved_map(sequence, folder, work)["first_tracked_frame"], 0)
 
 
 if __name__ == "__main__":
