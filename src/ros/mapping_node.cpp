@@ -306,12 +306,34 @@ bool MappingNode::onMapForTracker(MapForTracker::Request&, MapForTracker::Respon
 
 // The jobs held while the tracker's copy was on its way, but those it holds already.
 void MappingNode::mapHeldJobs(uint64_t first) {
+  for (auto& [sequence, job] : held_jobs_)
+    if (sequence < first) imagesToDenseMaps(job);
   for (auto& [sequence, job] : held_jobs_) {
     if (sequence < first) continue;
     job_sequence_.receive(sequence);
     mapping_thread_->push(std::move(job));
   }
   held_jobs_.clear();
+}
+
+// A held job whose keyframe came in the tracker's copy: its images are still good for the dense
+// maps, placed where the copy has the keyframe (unless the copy culled it).
+void MappingNode::imagesToDenseMaps(const MappingJob& job) {
+  if (!dense_ || !job.keyframe) return;
+  std::shared_ptr<const KeyFramePacket> packet;
+  {
+    std::lock_guard<std::mutex> lock(mapping_->map().updateMutex());
+    for (const auto& kf : mapping_->map().keyFrames())
+      if (kf->id == job.keyframe->id)
+        packet = std::make_shared<const KeyFramePacket>(
+            makeKeyFramePacket(*kf, options_.config.camera, job.images, job.segmentation));
+  }
+  if (!packet) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dense_keyframes_.insert(packet->id);
+  }
+  dense_->push(packet);
 }
 
 // A new mapping side from the tracker's copy (the old one's map is dropped with it).

@@ -34,7 +34,10 @@ class JobGap(unittest.TestCase):
         self.assertEqual(sorted(ids), list(range(int(stats.get("keyframes")))),
                          "keyframes of lost jobs are not in mapping_node's map")
         self.assertLessEqual(ate["rmse"], 1.5 * offline_ate)
-        self.assertIn("dense maps lack", saved.message)  # the lost jobs' images are gone
+        # topic_tools/drop loses the first of every three: those jobs' images alone are gone
+        # (those held while a handover came reach the dense maps).
+        lost = (int(stats.get("keyframes")) + 2) // 3
+        self.assertIn("dense maps lack %d keyframes" % lost, saved.message)
         self.assertEqual(support.load_saved_map(sequence, folder, work)["keyframes_loaded"],
                          len(ids))
 

@@ -58,6 +58,7 @@ class MappingNode {
   void askForHandOver(const std::string& when, uint64_t next_job);
   void takeOver(const MapSnapshot& snapshot, uint64_t next_job);
   void mapHeldJobs(uint64_t first);
+  void imagesToDenseMaps(const MappingJob& job);
   // askForHandOver once after kQuietJobs without a job (a job lost last shows no gap).
   void checkWhenQuiet();
   // ~map_for_tracker: a tracker apart that starts gets this side's map (it takes it over when it
