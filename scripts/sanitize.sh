@@ -54,7 +54,7 @@ fi
 # Tests that take more than about a minute under the sanitizers, or need the tools built
 # (measured, docs/RESULTS.md):
 # left out by --fast, and not even built.
-SANITIZE_SLOW_TESTS="${SANITIZE_SLOW_TESTS:-test_loop_closure|test_bonn_crowd|test_end_to_end|test_map_line_accuracy_synthetic|test_dynamic_rejection|test_line_tracking|test_line_accuracy_synthetic|test_semantic_masks|test_relocalisation|test_synth|test_tools_cli|test_occupancy_grid_office|rostest}"
+SANITIZE_SLOW_TESTS="${SANITIZE_SLOW_TESTS:-test_loop_closure|test_map_localisation|test_bonn_crowd|test_end_to_end|test_map_line_accuracy_synthetic|test_dynamic_rejection|test_line_tracking|test_line_accuracy_synthetic|test_semantic_masks|test_relocalisation|test_synth|test_tools_cli|test_occupancy_grid_office|rostest}"
 
 # The gtest targets --fast builds: every test/test_*.cpp and the ROS layer's, but the slow ones.
 fast_targets() {
