@@ -279,8 +279,7 @@ MapUpdate fromMsg(const MapUpdateMsg& m) {
   return u;
 }
 
-MapHandover handoverFromMsg(const std::vector<uint8_t>& map_file, int64_t updates_followed,
-                            uint64_t loaded_map, const Map::Ids& next_ids) {
+void checkHandoverCounts(int64_t updates_followed, const Map::Ids& next_ids) {
   for (const auto& [name, value] : {std::make_pair("updates_followed", updates_followed),
                                     std::make_pair("next_keyframe_id", next_ids.keyframe),
                                     std::make_pair("next_point_id", next_ids.point),
@@ -288,7 +287,6 @@ MapHandover handoverFromMsg(const std::vector<uint8_t>& map_file, int64_t update
     if (value < 0)
       throw std::invalid_argument(std::string("map handover: ") + name + " " +
                                   std::to_string(value) + " < 0");
-  return {map_file, updates_followed, loaded_map, next_ids};
 }
 
 MapSnapshotMsg toMsg(const MapSnapshot& s, const std::string& world_frame) {
@@ -302,12 +300,7 @@ MapSnapshotMsg toMsg(const MapSnapshot& s, const std::string& world_frame) {
     p.pose = toPoseMsg(pose.T_wc);
     m.trajectory.push_back(p);
   }
-  m.map_file = s.handover.map_file;
-  m.updates_followed = s.handover.updates_followed;
-  m.loaded_map = s.handover.loaded_map;
-  m.next_keyframe_id = s.handover.next_ids.keyframe;
-  m.next_point_id = s.handover.next_ids.point;
-  m.next_line_id = s.handover.next_ids.line;
+  handoverToFields(s.handover, m);
   return m;
 }
 
@@ -316,8 +309,7 @@ MapSnapshot fromMsg(const MapSnapshotMsg& m) {
   for (const auto& k : m.keyframes) s.keyframes.push_back(fromMsg(k));
   for (const auto& p : m.trajectory)
     s.trajectory.push_back({p.header.stamp.toSec(), fromPoseMsg(p.pose)});
-  s.handover = handoverFromMsg(m.map_file, m.updates_followed, m.loaded_map,
-                               {m.next_keyframe_id, m.next_point_id, m.next_line_id});
+  s.handover = handoverFromFields(m);
   return s;
 }
 

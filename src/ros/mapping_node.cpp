@@ -288,12 +288,7 @@ bool MappingNode::onMapForTracker(MapForTracker::Request&, MapForTracker::Respon
   job_sequence_ = MessageSequence();
   const MapHandover handover = mapping_->handOverMap();
   response.success = true;
-  response.map_file = handover.map_file;
-  response.updates_followed = handover.updates_followed;
-  response.loaded_map = handover.loaded_map;
-  response.next_keyframe_id = handover.next_ids.keyframe;
-  response.next_point_id = handover.next_ids.point;
-  response.next_line_id = handover.next_ids.line;
+  handoverToFields(handover, response);
   response.next_update_sequence = updates_sent_;
   response.message =
       handover.map_file.empty()

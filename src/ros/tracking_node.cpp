@@ -462,8 +462,7 @@ void TrackingNode::askMapperForItsMap() {
   ROS_INFO_STREAM("tracking_node: " << client.getService() << ": " << r.message);
   if (r.map_file.empty()) return;
   try {
-    mapper_map_ = handoverFromMsg(r.map_file, r.updates_followed, r.loaded_map,
-                                  {r.next_keyframe_id, r.next_point_id, r.next_line_id});
+    mapper_map_ = handoverFromFields(r);
   } catch (const std::invalid_argument& e) {
     bad_input_.report("map_for_tracker", std::string(e.what()) + "; a map of its own");
   }

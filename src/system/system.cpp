@@ -412,23 +412,27 @@ void System::startInMap(bool localisation_only) {
     next_frame_id_ = std::max(next_frame_id_, kf->frame_id + 1);
 }
 
-MapFileSetup System::mapFileSetup() const {
+const MapFileSetup& System::mapFileSetup() {
   if (mapping_) return mapping_->mapFileSetup();
-  // kApart: the LBD vocabulary is the mapping side's alone; the configured one is named, and
-  // the mapping side checks it as it loads the same file.
-  if (!places_) return MappingSide::fileSetup(config_, {}, {});
-  return MappingSide::fileSetup(
-      config_, places_->orbVocabulary(),
-      configuredVocabularyIdentity(config_.loop.lbd_vocabulary, DescriptorKind::kLbd));
+  if (apart_file_setup_) return *apart_file_setup_;
+  // kApart: the LBD vocabulary is the mapping side's alone; the configured one is named (read
+  // from its file once, when a map is first loaded or handed over), and the mapping side checks
+  // it as it loads the same file.
+  apart_file_setup_ =
+      places_ ? MappingSide::fileSetup(
+                    config_, places_->orbVocabulary(),
+                    configuredVocabularyIdentity(config_.loop.lbd_vocabulary, DescriptorKind::kLbd))
+              : MappingSide::fileSetup(config_, {}, {});
+  return *apart_file_setup_;
 }
 
 MapHandover System::handOverMap() {
   if (mapping_) throw std::logic_error("System::handOverMap: only with the mapping side apart");
+  const MapFileSetup& setup = mapFileSetup();  // before the lock: the first call reads a file
   std::lock_guard<std::mutex> lock(tracking_map_->updateMutex());
   MapHandover handover;
-  handover.map_file =
-      MapFileWriter::encode(mapFileSetup(), *tracking_map_,
-                            places_ ? places_->places() : std::map<long, KeyFramePlace>{});
+  handover.map_file = MapFileWriter::encode(
+      setup, *tracking_map_, places_ ? places_->places() : std::map<long, KeyFramePlace>{});
   handover.updates_followed = updates_followed_;
   handover.loaded_map = loaded_map_;
   handover.next_ids = tracking_map_->nextIds();

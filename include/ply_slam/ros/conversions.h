@@ -50,12 +50,28 @@ struct MapSnapshot {
   Trajectory trajectory;
   MapHandover handover;
 };
-// Throws std::invalid_argument as the keyframe and pose conversions do, and as handoverFromMsg.
+// Throws std::invalid_argument as the keyframe and pose conversions do, and as
+// handoverFromFields.
 MapSnapshot fromMsg(const MapSnapshotMsg& msg);
-// A handover's fields from a message (MapSnapshotMsg, MapForTracker.srv); throws
-// std::invalid_argument naming a negative count or id.
-MapHandover handoverFromMsg(const std::vector<uint8_t>& map_file, int64_t updates_followed,
-                            uint64_t loaded_map, const Map::Ids& next_ids);
+// The handover fields MapSnapshotMsg and MapForTracker's response share (map_file,
+// updates_followed, loaded_map, next_*_id), written and read in one place.
+template <class Fields>
+void handoverToFields(const MapHandover& h, Fields& m) {
+  m.map_file = h.map_file;
+  m.updates_followed = h.updates_followed;
+  m.loaded_map = h.loaded_map;
+  m.next_keyframe_id = h.next_ids.keyframe;
+  m.next_point_id = h.next_ids.point;
+  m.next_line_id = h.next_ids.line;
+}
+// Throws std::invalid_argument naming a negative count or id.
+void checkHandoverCounts(int64_t updates_followed, const Map::Ids& next_ids);
+template <class Fields>
+MapHandover handoverFromFields(const Fields& m) {
+  const Map::Ids ids{m.next_keyframe_id, m.next_point_id, m.next_line_id};
+  checkHandoverCounts(m.updates_followed, ids);
+  return {m.map_file, m.updates_followed, m.loaded_map, ids};
+}
 // Header and poses in `world_frame`; the sequence numbers and the stamp are the sender's.
 MapSnapshotMsg toMsg(const MapSnapshot& snapshot, const std::string& world_frame);
 

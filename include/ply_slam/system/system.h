@@ -210,7 +210,7 @@ class System {
   // one before them moved, and the tracker as the mapping side told.
   void followMapper(const MapUpdate& update);
   // The camera, pyramid and vocabularies a map file must have been made with to load here.
-  MapFileSetup mapFileSetup() const;
+  const MapFileSetup& mapFileSetup();
   // loadMap's read map into the tracker's copy (and its keyframes into the place database).
   void adoptTrackerCopy(MapFileContents copy);
   // After a map was taken: tracking starts lost, frame ids go on after the map's.
@@ -259,6 +259,7 @@ class System {
   std::set<long> unmapped_anchors_;
   JobSink job_sink_;         // kApart
   uint64_t loaded_map_ = 0;  // the checksum of the map file loaded (0: none), for the jobs
+  std::optional<MapFileSetup> apart_file_setup_;  // kApart: mapFileSetup's, once made
   // kApart with loop.enabled: the keyframes' ORB words, for relocalisation (the mapping side's
   // database is in another process).
   std::unique_ptr<RelocalisationDatabase> places_;
