@@ -79,6 +79,20 @@ CameraMsg toMsg(const PinholeCamera& c) {
   return m;
 }
 
+bool sameCamera(const PinholeCamera& a, const PinholeCamera& b) {
+  const CameraMsg x = toMsg(a), y = toMsg(b);
+  auto rectified = [](const CameraMsg& m) {
+    return std::all_of(m.distortion.begin(), m.distortion.end(), [](double k) { return k == 0; });
+  };
+  return x.fx == y.fx && x.fy == y.fy && x.cx == y.cx && x.cy == y.cy && x.width == y.width &&
+         x.height == y.height && (x.distortion == y.distortion || (rectified(x) && rectified(y))) &&
+         x.depth_factor == y.depth_factor && x.min_depth == y.min_depth &&
+         x.max_depth == y.max_depth && x.depth_noise_alpha == y.depth_noise_alpha &&
+         x.depth_noise_beta == y.depth_noise_beta && x.depth_noise_gamma == y.depth_noise_gamma &&
+         x.depth_noise_delta == y.depth_noise_delta &&
+         x.rolling_shutter_readout == y.rolling_shutter_readout;
+}
+
 PinholeCamera fromMsg(const CameraMsg& m) {
   PinholeCamera c;
   c.fx = m.fx;

@@ -7,23 +7,25 @@
 
 namespace ply_slam {
 
-std::unique_ptr<MappingSide> MappingBackEnd::makeMappingSide(const SystemConfig& config) {
+std::unique_ptr<MappingSide> MappingBackEnd::makeMappingSide(
+    const SystemConfig& config, const std::string& map_folder,
+    const std::vector<double>* orb_scales) {
   // On its own thread, as tracking_node's thread: a global BA is solved beside the keyframes.
-  return std::make_unique<MappingSide>(config, true, false);
+  auto mapping = std::make_unique<MappingSide>(config, true, false);
+  // The tracker apart loads the same file into its copy; each job says which it loaded.
+  if (!map_folder.empty())
+    mapping->loadMap((std::filesystem::path(map_folder) / System::kMapFileName).string(),
+                     orb_scales);
+  return mapping;
 }
 
 MappingBackEnd MappingBackEnd::fromOptions(const MappingNodeOptions& options) {
   const SystemConfig& config = options.config;
   MappingBackEnd back_end;
   if (options.map_keyframes) {
-    back_end.mapping = makeMappingSide(config);
     back_end.orb_scales =
         std::make_shared<const std::vector<double>>(OrbExtractor(config.orb).scales());
-    // The tracker apart loads the same file into its copy; each job says which it loaded.
-    if (!options.map.empty())
-      back_end.mapping->loadMap(
-          (std::filesystem::path(options.map) / System::kMapFileName).string(),
-          back_end.orb_scales.get());
+    back_end.mapping = makeMappingSide(config, options.map, back_end.orb_scales.get());
   }
   if (!config.dense.enabled) return back_end;
   back_end.dense = std::make_unique<DenseMappingWorker>(config.dense);

@@ -2,8 +2,6 @@
 
 #include <geometry_msgs/PoseArray.h>
 #include <nav_msgs/Path.h>
-#include <ply_slam/HandOverMap.h>
-#include <ply_slam/MapForTracker.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
@@ -35,8 +33,6 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
     : nh_(nh),
       pnh_(pnh),
       options_(std::move(options)),
-      orb_scales_(std::move(back_end.orb_scales)),
-      mapping_(std::move(back_end.mapping)),
       dense_(std::move(back_end.dense)),
       grid_builder_(std::move(back_end.grid_builder)),
       tf_listener_(tf_buffer_) {
@@ -70,26 +66,13 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
   }
 
   pose_sub_ = nh_.subscribe(options_.pose_topic, 100, &MappingNode::onPose, this);
-  if (mapping_) {
-    if (mapping_->loadedMap() != 0) keepLoadedMap();
-    mapping_thread_ = std::make_unique<MappingThread>(
-        [this](const MappingJob& job) { return mapping_->mapKeyFrame(job); });
-    update_pub_ = pnh_.advertise<MapUpdateMsg>("map_update", 100);
-    job_sub_ = nh_.subscribe(options_.mapping_job_topic, 100, &MappingNode::onMappingJob, this);
-    // What the mapping thread finished goes out within a hundredth of a second.
-    mapped_timer_ = nh_.createWallTimer(ros::WallDuration(0.01),
-                                        [this](const ros::WallTimerEvent&) { takeMapped(); });
-    // Started after the tracker (a restart): asked once whether jobs went by; then at each gap.
+  if (back_end.mapping) {
+    apart_ = std::make_unique<ApartMappingSide>(nh_, pnh_, options_, std::move(back_end.orb_scales),
+                                                std::move(back_end.mapping),
+                                                static_cast<MappedReceiver&>(*this), bad_input_);
+    if (apart_->mapping().loadedMap() != 0) keepLoadedMap();
     snapshot_sub_ =
         nh_.subscribe(options_.map_snapshot_topic, 2, &MappingNode::onMapSnapshot, this);
-    hand_over_client_ = nh_.serviceClient<HandOverMap>(options_.hand_over_service);
-    map_for_tracker_srv_ =
-        pnh_.advertiseService("map_for_tracker", &MappingNode::onMapForTracker, this);
-    // A job lost last shows no gap until the next one: after kQuietJobs without jobs (the start
-    // included) the tracker is asked once whether jobs went by.
-    last_job_ = ros::WallTime::now();
-    quiet_timer_ = nh_.createWallTimer(ros::WallDuration(0.5),
-                                       [this](const ros::WallTimerEvent&) { checkWhenQuiet(); });
   } else {
     keyframe_sub_ = nh_.subscribe(options_.keyframe_topic, 100, &MappingNode::onKeyFrame, this);
     update_sub_ = nh_.subscribe(options_.map_update_topic, 100, &MappingNode::onMapUpdate, this);
@@ -110,11 +93,10 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
       pnh_.advertiseService("save_trajectory", &MappingNode::saveTrajectory, this);
   save_map_srv_ = pnh_.advertiseService("save_map", &MappingNode::saveMap, this);
   tracker_save_map_client_ = nh_.serviceClient<SaveToPath>(options_.tracker_save_map_service);
-  ROS_INFO_STREAM("mapping_node: " << (mapping_
-                                           ? "maps the jobs from " + job_sub_.getTopic() +
-                                                 ", updates to " + update_pub_.getTopic()
-                                           : "keyframes from " + keyframe_sub_.getTopic() +
-                                                 ", map updates from " + update_sub_.getTopic())
+  ROS_INFO_STREAM("mapping_node: " << (apart_ ? "maps the jobs from " + apart_->jobTopic() +
+                                                    ", updates to " + apart_->updateTopic()
+                                              : "keyframes from " + keyframe_sub_.getTopic() +
+                                                    ", map updates from " + update_sub_.getTopic())
                                    << ", poses from " << pose_sub_.getTopic() << "; tf "
                                    << (options_.odom_frame.empty()
                                            ? options_.world_frame + " -> " + options_.camera_frame
@@ -125,7 +107,7 @@ MappingNode::MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOpt
 // keyframes (a map file holds no images).
 void MappingNode::keepLoadedMap() {
   const std::vector<KeyFramePacket> loaded =
-      sparseKeyFramePackets(mapping_->map(), options_.config.camera);
+      sparseKeyFramePackets(apart_->mapping().map(), options_.config.camera);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     store_.restore(loaded);
@@ -212,162 +194,22 @@ void MappingNode::keepMapUpdate(const MapUpdate& update) {
   if (dense_) dense_->follow(update);
 }
 
-void MappingNode::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) {
-  const Stopwatch watch;
-  const ThreadCpuStopwatch cpu;
-  MappingJob job;
-  try {
-    job = fromMsg(*msg, JobReceiver{orb_scales_.get(), cv::Size(options_.config.camera.width,
-                                                                options_.config.camera.height)});
-    mapping_->checkJob(job);
-  } catch (const std::exception& e) {
-    bad_input_.report("mapping_job", e.what());
-    return;
+// In the order made: what the mapping side made, into the store and the dense maps.
+void MappingNode::keepMapped(const std::vector<MappedKeyFrame>& mapped) {
+  for (const MappedKeyFrame& m : mapped) {
+    if (m.packet) keepKeyFrame(m.packet);
+    keepMapUpdate(*m.map_update);
   }
-  const uint64_t sequence = msg->sequence;
-  last_job_ = ros::WallTime::now();
-  quiet_checked_ = false;
-  if (awaiting_handover_) {                   // mapped after the tracker's copy, if not in it
-    if (held_jobs_.size() >= kMaxHeldJobs) {  // the copy is long in coming: memory stays bounded
-      bad_input_.report("mapping_job", "no handover yet: dropped held job " +
-                                           std::to_string(held_jobs_.front().first));
-      held_jobs_.erase(held_jobs_.begin());
-    }
-    held_jobs_.emplace_back(sequence, std::move(job));
-    return;
-  }
-  const uint64_t first_missing = job_sequence_.expected();
-  if (sequence > first_missing) {
-    // The job's report builds on the missed ones: the tracker's copy, which holds them, comes.
-    held_jobs_.emplace_back(sequence, std::move(job));
-    askForHandOver("after missing " + std::to_string(sequence - first_missing) + " jobs",
-                   first_missing);
-    if (!awaiting_handover_) mapHeldJobs(0);  // no answer: the map goes on without them
-    return;
-  }
-  job_sequence_.receive(sequence);
-  mapping_thread_->push(std::move(job));
-  noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
+  publishMap(ros::Time::now());
 }
 
-void MappingNode::checkWhenQuiet() {
-  if (awaiting_handover_ || quiet_checked_ || ros::WallTime::now() - last_job_ < kQuietJobs) return;
-  quiet_checked_ = true;
-  if (hand_over_client_.exists())
-    askForHandOver(std::to_string(kQuietJobs.toSec()) + " s without jobs",
-                   job_sequence_.expected());
-}
-
-// Every update made so far goes out first: those the tracker has not followed when it hands
-// over are dropped there (their numbers are below the one asked with).
-void MappingNode::askForHandOver(const std::string& when, uint64_t next_job) {
-  mapping_thread_->waitIdle();
-  takeMapped();
-  HandOverMap ask;
-  ask.request.next_job_sequence = next_job;
-  ask.request.next_update_sequence = updates_sent_;
-  if (!hand_over_client_.call(ask) || !ask.response.success) {
-    ROS_ERROR_STREAM("mapping_node: asked "
-                     << hand_over_client_.getService() << " " << when
-                     << " for the tracker's map, no answer"
-                     << (ask.response.message.empty() ? std::string() : ": " + ask.response.message)
-                     << "; the map goes on without what it missed");
-    return;
-  }
-  awaiting_handover_ = ask.response.handing_over;
-  ROS_INFO_STREAM("mapping_node: " << when << ": " << ask.response.message);
-}
-
-// A tracker that starts (or restarts: its jobs are numbered from 0 again) gets this side's map
-// once every job before is mapped and every update made has gone out.
-bool MappingNode::onMapForTracker(MapForTracker::Request&, MapForTracker::Response& response) {
-  mapping_thread_->waitIdle();
-  takeMapped();
-  held_jobs_.clear();
-  awaiting_handover_ = false;
-  job_sequence_ = MessageSequence();
-  const MapHandover handover = mapping_->handOverMap();
-  response.success = true;
-  handoverToFields(handover, response);
-  response.next_update_sequence = updates_sent_;
-  response.message =
-      handover.map_file.empty()
-          ? "the mapping side's map is empty"
-          : "the mapping side's map: " + std::to_string(mapping_->map().numKeyFrames()) +
-                " keyframes (" + std::to_string(handover.map_file.size() / 1024) + " KiB)";
-  ROS_INFO_STREAM("mapping_node: map_for_tracker: " << response.message);
-  return true;
-}
-
-// The jobs held while the tracker's copy was on its way, but those it holds already.
-void MappingNode::mapHeldJobs(uint64_t first) {
-  for (auto& [sequence, job] : held_jobs_)
-    if (sequence < first) imagesToDenseMaps(job);
-  for (auto& [sequence, job] : held_jobs_) {
-    if (sequence < first) continue;
-    job_sequence_.receive(sequence);
-    mapping_thread_->push(std::move(job));
-  }
-  held_jobs_.clear();
-}
-
-// A held job whose keyframe came in the tracker's copy: its images are still good for the dense
-// maps, placed where the copy has the keyframe (unless the copy culled it).
-void MappingNode::imagesToDenseMaps(const MappingJob& job) {
-  if (!dense_ || !job.keyframe) return;
-  std::shared_ptr<const KeyFramePacket> packet;
-  {
-    std::lock_guard<std::mutex> lock(mapping_->map().updateMutex());
-    for (const auto& kf : mapping_->map().keyFrames())
-      if (kf->id == job.keyframe->id)
-        packet = std::make_shared<const KeyFramePacket>(
-            makeKeyFramePacket(*kf, options_.config.camera, job.images, job.segmentation));
-  }
-  if (!packet) return;
+void MappingNode::keepDenseImages(std::shared_ptr<const KeyFramePacket> packet) {
+  if (!dense_) return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     dense_keyframes_.insert(packet->id);
   }
-  dense_->push(packet);
-}
-
-// A new mapping side from the tracker's copy (the old one's map is dropped with it).
-void MappingNode::takeOver(const MapSnapshot& snapshot, uint64_t next_job) {
-  mapping_thread_->waitIdle();
-  std::unique_ptr<MappingSide> fresh = MappingBackEnd::makeMappingSide(options_.config);
-  fresh->takeOver(snapshot.handover, orb_scales_.get());
-  mapping_thread_->takeFinished();  // none: nothing was pushed while waiting
-  mapping_ = std::move(fresh);
-  awaiting_handover_ = false;
-  job_sequence_.resynchronise(next_job);
-  mapHeldJobs(next_job);
-  ROS_INFO_STREAM("mapping_node: maps on from the tracker's copy: "
-                  << mapping_->map().numKeyFrames() << " keyframes, "
-                  << mapping_->map().numMapPoints() << " points; jobs from " << next_job);
-}
-
-// In the order made: each update to the tracker (whose copy follows them in turn), then into the
-// store and the dense maps.
-void MappingNode::takeMapped() {
-  // Idle, with a global bundle adjustment ended after the last keyframe: written back now.
-  if (mapping_thread_->backlog() == 0 && mapping_->mapper().globalBundleAdjustmentSolved())
-    mapping_thread_->push(MappingJob{});
-  std::vector<MappedKeyFrame> mapped;
-  try {
-    mapped = mapping_thread_->takeFinished();
-  } catch (const std::exception& e) {
-    bad_input_.report("mapping", e.what());
-    return;
-  }
-  for (const MappedKeyFrame& m : mapped) {
-    MapUpdateMsg update = toMsg(*m.map_update, options_.world_frame);
-    update.sequence = updates_sent_++;
-    update_pub_.publish(update);
-    if (m.packet) keepKeyFrame(m.packet);
-    keepMapUpdate(*m.map_update);
-    loops_closed_ += m.loop_correction != nullptr;
-  }
-  if (!mapped.empty()) publishMap(ros::Time::now());
+  dense_->push(std::move(packet));
 }
 
 void MappingNode::onMissed(uint64_t missed, const std::string& what) {
@@ -397,15 +239,8 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
     bad_input_.report("map_snapshot", e.what());
     return;
   }
-  if (mapping_) {  // apart: only a handover asked for counts
-    if (!awaiting_handover_ || snapshot.handover.map_file.empty()) return;
-    try {
-      takeOver(snapshot, msg->next_keyframe_sequence);
-    } catch (const std::exception& e) {
-      bad_input_.report("map_snapshot", e.what());
-      return;
-    }
-  }
+  // Apart, only a handover asked for counts.
+  if (apart_ && !apart_->takeOver(snapshot, msg->next_keyframe_sequence)) return;
   const std::vector<KeyFramePacket>& keyframes = snapshot.keyframes;
   Trajectory& poses = snapshot.trajectory;
   MapUpdate placed;
@@ -570,14 +405,15 @@ bool MappingNode::saveTrajectory(SaveToPath::Request& request, SaveToPath::Respo
     writeTumTrajectory(request.path, cameraTrajectory());
     const std::string partial = partialReason(false);
     response.success = partial.empty();
-    response.message =
-        (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
-        std::to_string(camera_trajectory_.size()) + " poses to " + request.path + " (" +
-        std::to_string(map_updates_) + " map updates applied, " + std::to_string(loop_updates_) +
-        " after a loop closure" +
-        (mapping_ ? ", " + std::to_string(loops_closed_) + " loops closed here" : std::string()) +
-        "; longest keyframe " + "or map-update callback " + std::to_string(longest_callback_ms_) +
-        " ms, " + std::to_string(longest_callback_cpu_ms_) + " ms of CPU)";
+    response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
+                       std::to_string(camera_trajectory_.size()) + " poses to " + request.path +
+                       " (" + std::to_string(map_updates_) + " map updates applied, " +
+                       std::to_string(loop_updates_) + " after a loop closure" +
+                       (apart_ ? ", " + std::to_string(apart_->loopsClosed()) + " loops closed here"
+                               : std::string()) +
+                       "; longest keyframe " + "or map-update callback " +
+                       std::to_string(longest_callback_ms_) + " ms, " +
+                       std::to_string(longest_callback_cpu_ms_) + " ms of CPU)";
   } catch (const std::exception& e) {
     response.success = false;
     response.message = e.what();
@@ -665,8 +501,9 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
   // The map file is written by whoever owns the map: this node with ~map_keyframes, else the
   // tracker.
   files.attempt([&] {
-    if (mapping_)
-      mapping_->saveMap((std::filesystem::path(request.path) / System::kMapFileName).string());
+    if (apart_)
+      apart_->mapping().saveMap(
+          (std::filesystem::path(request.path) / System::kMapFileName).string());
     else
       saveTrackerMap(request.path);
   });

@@ -52,6 +52,7 @@ MappingNodeOptions mappingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "map_keyframes", &o.map_keyframes);
   readParam(pnh, "hand_over_service", &o.hand_over_service);
   readParam(pnh, "mapping_job_topic", &o.mapping_job_topic);
+  readParam(pnh, "updates_wanted_topic", &o.updates_wanted_topic);
   // Said at the start, as the tracker says it: the mapping side apart loads the map file.
   const std::filesystem::path map_file = std::filesystem::path(o.map) / System::kMapFileName;
   if (o.map_keyframes && !o.map.empty() && !std::filesystem::is_regular_file(map_file))

@@ -5,6 +5,7 @@
 #include <ply_slam/KeyFrameMsg.h>
 #include <ply_slam/MapSnapshotMsg.h>
 #include <std_msgs/String.h>
+#include <std_msgs/UInt64.h>
 
 #include <algorithm>
 #include <chrono>
@@ -57,6 +58,10 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNode
     job_pub_ = pnh_.advertise<MappingJobMsg>("mapping_job", 100);
     mapper_update_sub_ =
         nh_.subscribe(options_.mapper_update_topic, 100, &TrackingNode::onMapperUpdate, this);
+    updates_wanted_pub_ = pnh_.advertise<std_msgs::UInt64>("updates_wanted", 10);
+    last_update_arrival_ = ros::WallTime::now();
+    update_check_timer_ = nh_.createWallTimer(
+        ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { checkMapperUpdates(); });
     // Before hand_over_map is offered: mapping_node cannot be asking it meanwhile (each would
     // wait for the other's single spinner).
     askMapperForItsMap();
@@ -234,10 +239,7 @@ TrackingNode::Answer TrackingNode::handOver(uint64_t next_job, uint64_t next_upd
   if (!system_) return {false, "nothing to hand over: no frame has arrived"};
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    update_floor_ = next_update;
-    resync_updates_ = true;
-    while (!mapper_updates_.empty() && mapper_updates_.front().first < next_update)
-      mapper_updates_.pop_front();
+    mapper_updates_.restartAt(next_update);
   }
   MapSnapshot map{system_->sparseKeyFramePackets(), system_->cameraTrajectory(),
                   system_->handOverMap()};
@@ -300,7 +302,7 @@ void TrackingNode::work() {
       // Between frames the mapping thread's results go out too: a loop closed after the last
       // frame must not wait for the next one.
       idle = !queue_cv_.wait_for(lock, kMappedPollPeriod, [this] {
-        return stopping_ || !queue_.empty() || (system_ && !mapper_updates_.empty());
+        return stopping_ || !queue_.empty() || (system_ && mapper_updates_.ready());
       });
       if (stopping_) return;  // shutting down: frames still waiting are not tracked
       idle = idle || queue_.empty();
@@ -347,6 +349,7 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
   }
   try {
     system_ = back_end_.make_system(camera, !mapper_map_);
+    camera_ = camera;
     if (options_.mapping_apart)
       system_->setJobSink([this](MappingJob job) { outgoing_.push_back(std::move(job)); });
     if (mapper_map_) {  // a restart: the mapping side's live map, not ~map's file
@@ -397,8 +400,8 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
   publishJobs(rgb.header.stamp);
 }
 
-// The mapping side's updates in the order it made them. One missed (a restart of either node) is
-// lost for good: the copy goes on with what it has, which is said.
+// The mapping side's updates, followed in the order it made them (each builds on the one before):
+// one that comes early waits until those before it come again (checkMapperUpdates).
 void TrackingNode::onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
   MapUpdate update;
   try {
@@ -407,31 +410,77 @@ void TrackingNode::onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
     bad_input_.report("map_update", e.what());
     return;
   }
-  uint64_t missed = 0;
+  last_update_arrival_ = ros::WallTime::now();
+  quiet_asked_ = false;
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    if (msg->sequence < update_floor_) return;  // made before a handover: that side started anew
-    if (std::exchange(resync_updates_, false)) mapper_update_sequence_.resynchronise(update_floor_);
-    missed = mapper_update_sequence_.receive(msg->sequence);
-    mapper_updates_.emplace_back(msg->sequence, std::move(update));
+    // False: sent again and here already, or made before a handover (that side started anew).
+    if (!mapper_updates_.push(msg->sequence, std::move(update))) return;
   }
-  if (missed)
-    ROS_ERROR_STREAM("tracking_node: missed " << missed << " map updates from the mapping side; "
-                                              << "the tracker's copy of the map goes on without");
   queue_cv_.notify_one();
+  checkMapperUpdates();
+}
+
+void TrackingNode::checkMapperUpdates() {
+  std::optional<uint64_t> missing;
+  uint64_t next = 0;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    missing = mapper_updates_.firstMissing();
+    next = mapper_updates_.next();
+  }
+  const ros::WallTime now = ros::WallTime::now();
+  if (!missing) {
+    hole_.reset();
+    if (quiet_asked_ || (now - last_update_arrival_).toSec() < kQuietUpdates) return;
+    quiet_asked_ = true;
+    askForUpdates(next);  // usually none went by: nothing comes
+    return;
+  }
+  if (hole_ != missing) {  // a new gap
+    hole_ = missing;
+    hole_seen_at_ = now;
+    ROS_WARN_STREAM("tracking_node: map update " << *missing << " from the mapping side is "
+                                                 << "missing; asked for it again");
+    askForUpdates(*missing);
+    return;
+  }
+  if ((now - hole_seen_at_).toSec() < kGiveUpUpdates) {
+    if ((now - updates_asked_at_).toSec() >= kAskUpdatesAgain) askForUpdates(*missing);
+    return;
+  }
+  uint64_t lost = 0;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    lost = mapper_updates_.skipMissing();
+  }
+  updates_lost_ += lost;
+  hole_.reset();
+  queue_cv_.notify_one();
+  ROS_ERROR_STREAM("tracking_node: map updates " << *missing << " to " << *missing + lost - 1
+                                                 << " from the mapping side never came; the "
+                                                    "tracker's copy of the map goes on without");
+}
+
+void TrackingNode::askForUpdates(uint64_t from) {
+  std_msgs::UInt64 msg;
+  msg.data = from;
+  updates_wanted_pub_.publish(msg);
+  updates_asked_at_ = ros::WallTime::now();
+  ++updates_asked_;
 }
 
 // Updates wait for the System (made at the first frame, in the map they build on).
 bool TrackingNode::followMapper() {
   if (!system_) return false;
-  std::deque<std::pair<uint64_t, MapUpdate>> updates;
+  std::vector<MapUpdate> updates;
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    updates.swap(mapper_updates_);
+    updates = mapper_updates_.takeReady();
   }
   if (updates.empty()) return false;
   const ThreadCpuStopwatch cpu;
-  for (const auto& [sequence, update] : updates) system_->followMapUpdate(update);
+  for (const MapUpdate& update : updates) system_->followMapUpdate(update);
   updates_followed_ += updates.size();
   longest_follow_cpu_ms_ = std::max(longest_follow_cpu_ms_, cpu.elapsedMs());
   return true;
@@ -456,8 +505,7 @@ void TrackingNode::askMapperForItsMap() {
   const MapForTracker::Response& r = ask.response;
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    update_floor_ = r.next_update_sequence;
-    resync_updates_ = true;
+    mapper_updates_.restartAt(r.next_update_sequence);
   }
   ROS_INFO_STREAM("tracking_node: " << client.getService() << ": " << r.message);
   if (r.map_file.empty()) return;
@@ -469,8 +517,15 @@ void TrackingNode::askMapperForItsMap() {
 }
 
 void TrackingNode::publishJobs(const ros::Time& stamp) {
+  // A mapping_node that starts later takes the tracker's copy over (hand_over_map).
+  if (!outgoing_.empty() && job_pub_.getNumSubscribers() == 0)
+    ROS_WARN_STREAM_THROTTLE(10, "tracking_node: no mapping_node takes the keyframes on "
+                                     << job_pub_.getTopic()
+                                     << ": no local BA, culling or loop closure until one does "
+                                        "(mapping.launch; or mapping_apart:=false)");
   for (const MappingJob& job : outgoing_) {
     MappingJobMsg msg = toMsg(job, options_.world_frame);
+    msg.camera = toMsg(camera_);
     msg.header.stamp = stamp;
     msg.sequence = keyframes_++;
     job_pub_.publish(msg);
@@ -568,7 +623,8 @@ void TrackingNode::publishStats() {
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
-    << " updates_followed=" << updates_followed_ << " follow_cpu_ms_max=" << longest_follow_cpu_ms_
+    << " updates_followed=" << updates_followed_ << " updates_asked=" << updates_asked_
+    << " updates_lost=" << updates_lost_ << " follow_cpu_ms_max=" << longest_follow_cpu_ms_
     << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
     << " median_ms=" << median(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();

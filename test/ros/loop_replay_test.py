@@ -9,11 +9,13 @@ mapping_node (tracking.launch mapping_apart, mapping.launch map_keyframes): the 
 keyframes as jobs, mapping_node closes the loop and sends the updates back, and the tracker's copy
 of the map follows them; neither node may hold the other up for more than a frame period, and the
 map file mapping_node then writes itself loads again and relocalises the ring's first frames."""
+import hashlib
 import json
 import os
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
 import unittest
 
@@ -65,6 +67,29 @@ def keep_head(sequence, frames):
     return head
 
 
+def ring_bag(frames, config):
+    """The ring rendered and written as a bag (its folder, the bag, its first 3 frames as a
+    sequence), once for both loop rostests (rostests run one at a time): kept in the temporary
+    folder under a name that changes with the renderer's build, the frames and the config."""
+    synth = support.tool("ply_slam_synth")
+    with open(config) as f:
+        key = "%s %f %d %s" % (synth, os.path.getmtime(synth), frames, f.read())
+    cache = os.path.join(tempfile.gettempdir(),
+                         "ply_slam_ring_" + hashlib.sha1(key.encode()).hexdigest()[:12])
+    ring, bag = os.path.join(cache, "ring"), os.path.join(cache, "ring.bag")
+    done = os.path.join(cache, "done")
+    if not os.path.isfile(done):
+        shutil.rmtree(cache, True)
+        subprocess.run([synth, "--out", ring, "--scene", "ring", "--frames", str(frames),
+                        "--loop", "--noise"], check=True, capture_output=True)
+        support.tum_to_bag(ring, bag, d435i=True, extra=["--config", config, "--lz4"])
+        keep_head(ring, 3)
+        shutil.rmtree(os.path.join(ring, "rgb"))  # the bag has them now
+        shutil.rmtree(os.path.join(ring, "depth"))
+        open(done, "w").close()
+    return ring, bag, ring + "_head"
+
+
 class LoopReplay(unittest.TestCase):
     def test_saved_trajectory_has_the_loop_closed(self):
         frames = rospy.get_param("~frames", 900)
@@ -72,16 +97,8 @@ class LoopReplay(unittest.TestCase):
         apart = rospy.get_param("~apart", False)
         work = support.work_dir()
         self.addCleanup(shutil.rmtree, work, True)
-        ring = os.path.join(work, "ring")
-        subprocess.run([support.tool("ply_slam_synth"), "--out", ring, "--scene", "ring",
-                        "--frames", str(frames), "--loop", "--noise"], check=True,
-                       capture_output=True)
-        bag = os.path.join(work, "ring.bag")
         config = os.path.join(support.PACKAGE_DIR, "test", "ros", "ring_loop.yaml")
-        support.tum_to_bag(ring, bag, d435i=True, extra=["--config", config, "--lz4"])
-        head = keep_head(ring, 3)
-        shutil.rmtree(os.path.join(ring, "rgb"))  # the bag has them now
-        shutil.rmtree(os.path.join(ring, "depth"))
+        ring, bag, head = ring_bag(frames, config)
 
         stats = support.StatsListener()
         streamed = StreamedPoses()

@@ -126,7 +126,7 @@ class MapReplay(unittest.TestCase):
                                   "map:=" + saved, "odom_frame:=odom", "rviz:=false",
                                   "output:=log", "delay:=5"] +
                                  (["mapping_apart:=true", "localisation_only:=false"] if apart
-                                  else []))
+                                  else ["mapping_apart:=false"]))
         self.addCleanup(lambda: (nodes.send_signal(signal.SIGINT), nodes.wait(30)))
         support.wait_for_nodes()
         self.assertTrue(stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 90),

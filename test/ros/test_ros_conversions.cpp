@@ -173,6 +173,29 @@ TEST(RosConversions, CameraInfoIsCheckedLikeTheConfig) {
   expectRejectedNaming([&] { cameraFromInfo(info, PinholeCamera()); }, "width");
 }
 
+// A job's camera: the mapping side apart maps in it when it is not its config's (sameCamera).
+TEST(RosConversions, CameraRoundTripAndComparison) {
+  const PinholeCamera camera = cameraFromInfo(someCameraInfo(), PinholeCamera());
+  const PinholeCamera back = fromMsg(toMsg(camera));
+  EXPECT_TRUE(sameCamera(camera, back));
+  PinholeCamera other = back;
+  other.cx += 1e-9;
+  EXPECT_FALSE(sameCamera(camera, other));
+  other = back;
+  other.depth_noise.alpha *= 2;
+  EXPECT_FALSE(sameCamera(camera, other));
+  other = back;
+  other.distortion = cv::Mat();  // none
+  EXPECT_FALSE(sameCamera(camera, other));
+  PinholeCamera rectified = back;
+  rectified.distortion = cv::Mat::zeros(1, 5, CV_64F);
+  other.distortion = cv::Mat();  // all zero and none: the same
+  EXPECT_TRUE(sameCamera(rectified, other));
+  CameraMsg bad = toMsg(camera);
+  bad.fx = std::nan("");
+  EXPECT_THROW(fromMsg(bad), std::invalid_argument);
+}
+
 // Bit for bit: a copy of the map that tracks gets the mapping side's doubles (MapUpdate).
 TEST(RosConversions, MapUpdateRoundTrip) {
   MapUpdate u;

@@ -34,6 +34,12 @@ Eigen::Isometry3d fromTransformMsg(const geometry_msgs::Transform& transform);
 // the field when a number is not finite or absurd (the checks of the config's camera).
 PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera base);
 
+CameraMsg toMsg(const PinholeCamera& camera);
+// Throws std::invalid_argument naming the field when a number is not finite or absurd.
+PinholeCamera fromMsg(const CameraMsg& msg);
+// The same intrinsics, image size, distortion, depth scale, range and noise, and readout.
+bool sameCamera(const PinholeCamera& a, const PinholeCamera& b);
+
 // `world_frame` goes into header.frame_id.
 KeyFrameMsg toMsg(const KeyFramePacket& packet, const std::string& world_frame);
 // Throws std::invalid_argument on an inconsistent message (descriptor rows vs keypoints,

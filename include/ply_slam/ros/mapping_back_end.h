@@ -24,8 +24,11 @@ struct MappingBackEnd {
   // Throws std::runtime_error naming a vocabulary that does not load (map_keyframes, loop on) or
   // a map file that does not (map_keyframes with ~map), with the fault.
   static MappingBackEnd fromOptions(const MappingNodeOptions& options);
-  // The mapping side as mapping_node runs it (its map empty); throws as fromOptions.
-  static std::unique_ptr<MappingSide> makeMappingSide(const SystemConfig& config);
+  // The mapping side as mapping_node runs it, with the map file in `map_folder` loaded ("": an
+  // empty map; its keyframes point to `orb_scales`); throws as fromOptions.
+  static std::unique_ptr<MappingSide> makeMappingSide(const SystemConfig& config,
+                                                      const std::string& map_folder,
+                                                      const std::vector<double>* orb_scales);
 };
 
 }  // namespace ply_slam

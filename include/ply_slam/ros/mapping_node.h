@@ -2,10 +2,8 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <ply_slam/KeyFrameMsg.h>
-#include <ply_slam/MapForTracker.h>
 #include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
-#include <ply_slam/MappingJobMsg.h>
 #include <ply_slam/SaveToPath.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
@@ -25,54 +23,42 @@
 #include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/map_store.h"
+#include "ply_slam/ros/apart_mapping_side.h"
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/mapping_back_end.h"
 #include "ply_slam/ros/mapping_node_options.h"
-#include "ply_slam/system/mapping_thread.h"
 
 namespace ply_slam {
 
-// ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps a copy of the map from the
-// tracker's keyframes and map updates (MapStore), shows it (points, lines, keyframes, path, dense
-// cloud, semantic octree), broadcasts tf and saves trajectory and maps on request. Local bundle
-// adjustment, culling and loop closure run in the tracking process (System), their results
-// arriving here as MapUpdates (README, "Layout"); with ~map_keyframes they run here instead, on
-// the jobs of a tracker with ~mapping_apart (a MappingSide on a MappingThread), and the updates
-// go back to it on ~map_update. Its main reads the options and builds the back-end (dense maps,
-// grid, the mapping side).
+// ROS glue of the mapping side (DESIGN.md, "ROS interface"): keeps a copy of the map (MapStore),
+// shows it (points, lines, keyframes, path, dense cloud, semantic octree), broadcasts tf and saves
+// trajectory and maps on request. With ~map_keyframes it maps the jobs of a tracker with
+// ~mapping_apart (ApartMappingSide: local BA, culling, loop closure) and its copy is what the
+// mapping side made; without, local BA, culling and loop closure run in the tracking process
+// (System) and the copy follows the tracker's keyframes and map updates (README, "Layout"). Its
+// main reads the options and builds the back-end (dense maps, grid, the mapping side).
 //
 // Threads: every subscriber, timer and service runs on ros::spin's one thread; the dense maps
 // build on the DenseMappingWorker's own thread behind its own lock (withMaps), the mapping side
-// on the MappingThread's (its results are taken by a timer on the spinner). mutex_ guards
-// what the callbacks share, so a multi-threaded spinner would stay correct too.
-class MappingNode {
+// on ApartMappingSide's MappingThread. mutex_ guards what the callbacks share, so a
+// multi-threaded spinner would stay correct too.
+class MappingNode : private MappedReceiver {
  public:
   MappingNode(ros::NodeHandle nh, ros::NodeHandle pnh, MappingNodeOptions options,
               MappingBackEnd back_end);
 
  private:
   void keepLoadedMap();
-  // ~map_keyframes: asks the tracker whether jobs went by from `next_job` on (a restart, a gap);
-  // if so the tracker's copy comes on ~map_snapshot and jobs wait (held_jobs_) until takeOver.
-  void askForHandOver(const std::string& when, uint64_t next_job);
-  void takeOver(const MapSnapshot& snapshot, uint64_t next_job);
-  void mapHeldJobs(uint64_t first);
-  void imagesToDenseMaps(const MappingJob& job);
-  // askForHandOver once after kQuietJobs without a job (a job lost last shows no gap).
-  void checkWhenQuiet();
-  // ~map_for_tracker: a tracker apart that starts gets this side's map (it takes it over when it
-  // restarted while this side went on).
-  bool onMapForTracker(MapForTracker::Request& request, MapForTracker::Response& response);
   void onKeyFrame(const ply_slam::KeyFrameMsgConstPtr& msg);
   void onPose(const geometry_msgs::PoseStampedConstPtr& msg);
   void onMapUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
   // The store and the dense maps take a keyframe and what the mapping side changed.
   void keepKeyFrame(const std::shared_ptr<const KeyFramePacket>& packet);
   void keepMapUpdate(const MapUpdate& update);
-  // ~map_keyframes: a tracker's job to the mapping thread; what it made, to the tracker and kept.
-  void onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg);
-  void takeMapped();
+  // MappedReceiver: what ApartMappingSide made, into the store and the dense maps.
+  void keepMapped(const std::vector<MappedKeyFrame>& mapped) override;
+  void keepDenseImages(std::shared_ptr<const KeyFramePacket> packet) override;
   // A gap in the tracker's numbering (`missed` > 0: say so), or the start: ask the tracker for
   // its whole map.
   void onMissed(uint64_t missed, const std::string& what);
@@ -85,7 +71,7 @@ class MappingNode {
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
   Trajectory cameraTrajectory() const;
   // Callbacks run one at a time: the longest is how long the tracker's messages may wait.
-  void noteCallbackMs(double ms, double cpu_ms);  // wall-clock and thread CPU
+  void noteCallbackMs(double ms, double cpu_ms) override;  // wall-clock and thread CPU
   bool saveTrajectory(SaveToPath::Request& request, SaveToPath::Response& response);
   bool saveMap(SaveToPath::Request& request, SaveToPath::Response& response);
   // Asks the tracker for the map file in `folder`; throws std::runtime_error saying why not.
@@ -121,26 +107,6 @@ class MappingNode {
   BadInputLog bad_input_;  // locks itself
 
   ros::Subscriber keyframe_sub_, pose_sub_, update_sub_, snapshot_sub_;
-  // ~map_keyframes: the mapping side (its map is its own) on its thread, the tracker's jobs in
-  // (numbered; spinner thread only) and the updates out (numbered in the same way).
-  // The ORB scales first: the map's keyframes point to them.
-  std::shared_ptr<const std::vector<double>> orb_scales_;
-  std::unique_ptr<MappingSide> mapping_;
-  std::unique_ptr<MappingThread> mapping_thread_;
-  ros::Subscriber job_sub_;
-  ros::Publisher update_pub_;
-  ros::WallTimer mapped_timer_;
-  MessageSequence job_sequence_;
-  ros::ServiceClient hand_over_client_;
-  ros::ServiceServer map_for_tracker_srv_;
-  bool awaiting_handover_ = false;
-  std::vector<std::pair<uint64_t, MappingJob>> held_jobs_;  // by sequence, while awaiting
-  static constexpr size_t kMaxHeldJobs = 30;                // ~2.5 MB each at 640x480
-  inline static const ros::WallDuration kQuietJobs{2.0};
-  ros::WallTime last_job_;
-  bool quiet_checked_ = false;
-  ros::WallTimer quiet_timer_;
-  uint64_t updates_sent_ = 0, loops_closed_ = 0;
   ros::ServiceClient resend_client_;
   // tracking_node's ~save_map: without ~map_keyframes the map file that loads again comes from
   // the tracker, which holds the whole map (descriptors, covisibility, place data); MapStore
@@ -177,6 +143,9 @@ class MappingNode {
   std::optional<Eigen::Isometry3d> T_map_world_;
   // ~map: T_map_world_ from the saved map's WorldInMapFile, when it has one.
   void placeWorldAsSaved(const std::string& folder);
+
+  // ~map_keyframes (null without): last, so that it stops before what it hands its results to.
+  std::unique_ptr<ApartMappingSide> apart_;
 };
 
 }  // namespace ply_slam

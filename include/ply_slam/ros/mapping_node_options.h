@@ -42,8 +42,10 @@ struct MappingNodeOptions {
   // Run the mapping side here (a MappingSide on a thread of its own) on the jobs of a tracker
   // with ~mapping_apart, and send it the updates (~map_update); false: keep a copy of the map
   // the tracking process maps (keyframe_topic, map_update_topic).
-  bool map_keyframes = false;
+  bool map_keyframes = true;
   std::string mapping_job_topic = "tracking_node/mapping_job";
+  // With map_keyframes: the tracker asks here for the updates it missed, from the number given.
+  std::string updates_wanted_topic = "tracking_node/updates_wanted";
 };
 
 // Throws ConfigError for a missing or bad ~config (as configFromParams) and std::invalid_argument

@@ -23,7 +23,7 @@
 #include <optional>
 #include <thread>
 
-#include "ply_slam/common/message_sequence.h"
+#include "ply_slam/common/in_order_queue.h"
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
 #include "ply_slam/ros/tracking_back_end.h"
@@ -93,6 +93,12 @@ class TrackingNode {
   // ~mapping_apart: the mapping side's updates, in, and the tracker's keyframes, out.
   void onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
   bool followMapper();  // true when it followed any
+  // ~mapping_apart, on the spinner: an update missing asks mapping_node to send again from it
+  // (~updates_wanted), at most every kAskUpdatesAgain; after kGiveUpUpdates the copy goes on
+  // without it. After kQuietUpdates without updates the same is asked once (a last update lost
+  // shows no gap).
+  void checkMapperUpdates();
+  void askForUpdates(uint64_t from);
   void publishJobs(const ros::Time& stamp);
   void addToPath(const geometry_msgs::PoseStamped& pose, const Eigen::Isometry3d& T_wc);
   void sendPath();
@@ -113,6 +119,7 @@ class TrackingNode {
   std::optional<MapHandover> mapper_map_;
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
+  PinholeCamera camera_;            // system_'s; goes with each job (~mapping_apart)
   RgbdMessageDecoder decoder_;
   BadInputLog bad_input_;  // any thread: locks itself
 
@@ -122,6 +129,8 @@ class TrackingNode {
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
   ros::Publisher job_pub_;             // ~mapping_apart
   ros::Subscriber mapper_update_sub_;  // ~mapping_apart
+  ros::Publisher updates_wanted_pub_;  // ~mapping_apart
+  ros::WallTimer update_check_timer_;  // ~mapping_apart: checkMapperUpdates
   ros::ServiceServer resend_srv_, save_map_srv_, hand_over_srv_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;  // worker thread only, as last_path_pose_ and total_ms_
@@ -148,14 +157,15 @@ class TrackingNode {
   std::mutex queue_mutex_;            // guards queue_ and stopping_
   std::condition_variable queue_cv_;  // queue_ grew or stopping_ was set
   std::deque<Job> queue_;             // under queue_mutex_
-  // ~mapping_apart: the mapping side's updates by sequence, waiting for the worker. After a
-  // handover, updates before update_floor_ are dropped (their mapping side started anew), and
-  // the spinner resynchronises mapper_update_sequence_ there (resync_updates_).
-  std::deque<std::pair<uint64_t, MapUpdate>> mapper_updates_;  // under queue_mutex_
-  uint64_t update_floor_ = 0;                                  // under queue_mutex_
-  bool resync_updates_ = false;                                // under queue_mutex_
-  MessageSequence mapper_update_sequence_;                     // spinner thread only
-  bool stopping_ = false;                                      // under queue_mutex_
+  // ~mapping_apart: the mapping side's updates by sequence, given to the worker in that order.
+  // After a handover those numbered before the mapping side's next are dropped (restartAt).
+  InOrderQueue<MapUpdate> mapper_updates_;  // under queue_mutex_
+  bool stopping_ = false;                   // under queue_mutex_
+  // checkMapperUpdates' state, spinner thread only.
+  static constexpr double kAskUpdatesAgain = 1.0, kGiveUpUpdates = 5.0, kQuietUpdates = 2.0;  // s
+  ros::WallTime last_update_arrival_, updates_asked_at_, hole_seen_at_;
+  std::optional<uint64_t> hole_;  // the first missing update when it was seen
+  bool quiet_asked_ = false;
   std::thread worker_;
 
   // Counters for ~stats and the shutdown report (atomic: counted on one thread, read on both);
@@ -163,7 +173,7 @@ class TrackingNode {
   // what it missed from the gaps).
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
-      updates_{0}, loops_{0}, updates_followed_{0};
+      updates_{0}, loops_{0}, updates_followed_{0}, updates_asked_{0}, updates_lost_{0};
   std::vector<double> total_ms_;  // worker thread only
 };
 

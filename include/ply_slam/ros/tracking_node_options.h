@@ -37,7 +37,7 @@ struct TrackingNodeOptions {
   bool mapping_thread = true;  // the mapping side beside tracking, not after each keyframe
   // The mapping side in mapping_node (~map_keyframes there): keyframes go out as jobs on
   // ~mapping_job, the tracker's copy of the map follows the updates on mapper_update_topic.
-  bool mapping_apart = false;
+  bool mapping_apart = true;
   std::string mapper_update_topic = "mapping_node/map_update";
   // ~mapping_apart: asked at the start for the mapping side's map; when it is not empty (this
   // node restarted) the tracker takes it over instead of ~map.
