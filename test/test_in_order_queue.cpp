@@ -57,8 +57,12 @@ TEST(InOrderQueue, ARestartDropsWhatCameBefore) {
   EXPECT_EQ(*queue.firstMissing(), 6u);
   queue.push(6, 6);
   EXPECT_EQ(queue.takeReady(), (std::vector<int>{6, 7}));
-  queue.restartAt(3);  // behind what was given out: no change
-  EXPECT_EQ(queue.next(), 8u);
+  queue.push(9, 9);
+  queue.restartAt(0);  // a restarted sender numbers from 0 again: 9 was the old one's
+  EXPECT_EQ(queue.next(), 0u);
+  EXPECT_EQ(queue.waiting(), 0u);
+  EXPECT_TRUE(queue.push(0, 100));
+  EXPECT_EQ(queue.takeReady(), std::vector<int>{100});
 }
 
 }  // namespace

@@ -16,11 +16,14 @@ template <typename T>
 class InOrderQueue {
  public:
   // The sender started anew at `next`: what is numbered below it, waiting or still to come, is
-  // dropped. An earlier `next` than the present one changes nothing.
+  // dropped. A `next` below the present one is a new sender numbering from there (a restarted
+  // one): everything waiting was the old one's.
   void restartAt(uint64_t next) {
-    if (next <= next_) return;
+    if (next < next_)
+      waiting_.clear();
+    else
+      waiting_.erase(waiting_.begin(), waiting_.lower_bound(next));
     next_ = next;
-    waiting_.erase(waiting_.begin(), waiting_.lower_bound(next));
   }
 
   // False, and nothing kept: the number was given out or is waiting already (a repeat), or lies
