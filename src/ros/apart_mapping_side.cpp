@@ -3,7 +3,7 @@
 #include <ply_slam/HandOverMap.h>
 #include <ros/serialization.h>
 
-#include <sstream>
+#include <boost/make_shared.hpp>
 
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/ros/mapping_back_end.h"
@@ -84,22 +84,16 @@ void ApartMappingSide::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) 
 
 void ApartMappingSide::adoptCamera(const PinholeCamera& camera) {
   if (sameCamera(camera, config_.camera)) return;
-  auto intrinsics = [](const PinholeCamera& c) {
-    std::ostringstream text;
-    text << "fx " << c.fx << " fy " << c.fy << " cx " << c.cx << " cy " << c.cy << ", " << c.width
-         << "x" << c.height;
-    return text.str();
-  };
   if (mapped_any_)
-    throw std::invalid_argument("the tracker's camera (" + intrinsics(camera) +
+    throw std::invalid_argument("the tracker's camera (" + intrinsicsText(camera) +
                                 ") is not the one this map was made with (" +
-                                intrinsics(config_.camera) + ")");
+                                intrinsicsText(config_.camera) + ")");
   SystemConfig config = options_.config;
   config.camera = camera;
   mapping_thread_->waitIdle();  // nothing was pushed: no job taken yet
   mapping_ = MappingBackEnd::makeMappingSide(config, options_.map, orb_scales_.get());
   config_ = std::move(config);
-  ROS_INFO_STREAM("mapping_node: maps in the tracker's intrinsics: " << intrinsics(camera));
+  ROS_INFO_STREAM("mapping_node: maps in the tracker's intrinsics: " << intrinsicsText(camera));
 }
 
 // In the order made: each update to the tracker (whose copy follows them in turn), then to the
@@ -116,8 +110,8 @@ void ApartMappingSide::takeMapped() {
     return;
   }
   for (const MappedKeyFrame& m : mapped) {
-    MapUpdateMsg update = toMsg(*m.map_update, options_.world_frame);
-    update.sequence = updates_sent_++;
+    auto update = boost::make_shared<MapUpdateMsg>(toMsg(*m.map_update, options_.world_frame));
+    update->sequence = updates_sent_++;
     update_pub_.publish(update);
     keepSent(update);
     loops_closed_ += m.loop_correction != nullptr;
@@ -125,11 +119,13 @@ void ApartMappingSide::takeMapped() {
   if (!mapped.empty()) receiver_.keepMapped(mapped);
 }
 
-void ApartMappingSide::keepSent(const MapUpdateMsg& update) {
-  sent_bytes_ += ros::serialization::serializationLength(update);
-  sent_.push_back(update);
+// Published as a shared message, which must not change after: kept as it is, not copied.
+void ApartMappingSide::keepSent(MapUpdateMsg::ConstPtr update) {
+  const size_t bytes = ros::serialization::serializationLength(*update);
+  sent_bytes_ += bytes;
+  sent_.emplace_back(std::move(update), bytes);
   while (sent_.size() > kMaxSentUpdates || (sent_.size() > 1 && sent_bytes_ > kMaxSentBytes)) {
-    sent_bytes_ -= ros::serialization::serializationLength(sent_.front());
+    sent_bytes_ -= sent_.front().second;
     sent_.pop_front();
   }
 }
@@ -139,14 +135,14 @@ void ApartMappingSide::keepSent(const MapUpdateMsg& update) {
 void ApartMappingSide::onUpdatesWanted(const std_msgs::UInt64ConstPtr& msg) {
   const uint64_t from = msg->data;
   if (from >= updates_sent_) return;  // it has them all
-  if (sent_.empty() || sent_.front().sequence > from)
+  if (sent_.empty() || sent_.front().first->sequence > from)
     ROS_ERROR_STREAM("mapping_node: the tracker asks for map updates from "
                      << from << "; the oldest kept is "
-                     << (sent_.empty() ? updates_sent_ : sent_.front().sequence)
+                     << (sent_.empty() ? updates_sent_ : sent_.front().first->sequence)
                      << ": the tracker's copy goes on without those before");
   size_t resent = 0;
-  for (const MapUpdateMsg& update : sent_)
-    if (update.sequence >= from) {
+  for (const auto& [update, bytes] : sent_)
+    if (update->sequence >= from) {
       update_pub_.publish(update);
       ++resent;
     }

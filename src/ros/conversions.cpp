@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "ply_slam/common/camera_check.h"
@@ -91,6 +92,13 @@ bool sameCamera(const PinholeCamera& a, const PinholeCamera& b) {
          x.depth_noise_beta == y.depth_noise_beta && x.depth_noise_gamma == y.depth_noise_gamma &&
          x.depth_noise_delta == y.depth_noise_delta &&
          x.rolling_shutter_readout == y.rolling_shutter_readout;
+}
+
+std::string intrinsicsText(const PinholeCamera& c) {
+  std::ostringstream text;
+  text << "fx " << c.fx << " fy " << c.fy << " cx " << c.cx << " cy " << c.cy << ", " << c.width
+       << "x" << c.height;
+  return text.str();
 }
 
 PinholeCamera fromMsg(const CameraMsg& m) {

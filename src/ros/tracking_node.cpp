@@ -340,16 +340,13 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
   PinholeCamera camera = options_.config.camera;
   if (info && calibrated(*info)) {
     camera = cameraFromInfo(*info, camera);
-    ROS_INFO_STREAM("intrinsics from camera_info: fx " << camera.fx << " fy " << camera.fy << " cx "
-                                                       << camera.cx << " cy " << camera.cy << ", "
-                                                       << camera.width << "x" << camera.height);
+    ROS_INFO_STREAM("intrinsics from camera_info: " << intrinsicsText(camera));
   } else {
-    ROS_INFO_STREAM("intrinsics from the config: fx " << camera.fx << " fy " << camera.fy << " cx "
-                                                      << camera.cx << " cy " << camera.cy);
+    ROS_INFO_STREAM("intrinsics from the config: " << intrinsicsText(camera));
   }
   try {
     system_ = back_end_.make_system(camera, !mapper_map_);
-    camera_ = camera;
+    job_camera_ = toMsg(camera);
     if (options_.mapping_apart)
       system_->setJobSink([this](MappingJob job) { outgoing_.push_back(std::move(job)); });
     if (mapper_map_) {  // a restart: the mapping side's live map, not ~map's file
@@ -525,7 +522,7 @@ void TrackingNode::publishJobs(const ros::Time& stamp) {
                                         "(mapping.launch; or mapping_apart:=false)");
   for (const MappingJob& job : outgoing_) {
     MappingJobMsg msg = toMsg(job, options_.world_frame);
-    msg.camera = toMsg(camera_);
+    msg.camera = job_camera_;
     msg.header.stamp = stamp;
     msg.sequence = keyframes_++;
     job_pub_.publish(msg);

@@ -66,7 +66,7 @@ class ApartMappingSide {
   void checkWhenQuiet();  // askForHandOver once after kQuietJobs without a job
   bool onMapForTracker(MapForTracker::Request& request, MapForTracker::Response& response);
   void onUpdatesWanted(const std_msgs::UInt64ConstPtr& msg);
-  void keepSent(const MapUpdateMsg& update);
+  void keepSent(MapUpdateMsg::ConstPtr update);
   // The mapping side maps in the tracker's intrinsics (camera_info's, or its config's), which
   // each job carries: made anew with them before the first job; after it, others are refused.
   void adoptCamera(const PinholeCamera& camera);
@@ -95,9 +95,10 @@ class ApartMappingSide {
   bool quiet_checked_ = false;
   uint64_t updates_sent_ = 0;
   size_t loops_closed_ = 0;
-  // The newest updates sent, for a tracker that missed some: at most kMaxSentUpdates and
-  // kMaxSentBytes (a loop's whole-map update is the largest).
-  std::deque<MapUpdateMsg> sent_;
+  // The newest updates sent (the messages published, shared), with their serialised sizes, for a
+  // tracker that missed some: at most kMaxSentUpdates and kMaxSentBytes (a loop's whole-map
+  // update is the largest).
+  std::deque<std::pair<MapUpdateMsg::ConstPtr, size_t>> sent_;
   size_t sent_bytes_ = 0;
   static constexpr size_t kMaxSentUpdates = 300, kMaxSentBytes = size_t{64} << 20;
 };

@@ -39,6 +39,8 @@ CameraMsg toMsg(const PinholeCamera& camera);
 PinholeCamera fromMsg(const CameraMsg& msg);
 // The same intrinsics, image size, distortion, depth scale, range and noise, and readout.
 bool sameCamera(const PinholeCamera& a, const PinholeCamera& b);
+// "fx .. fy .. cx .. cy .., WxH", for logs and errors.
+std::string intrinsicsText(const PinholeCamera& camera);
 
 // `world_frame` goes into header.frame_id.
 KeyFrameMsg toMsg(const KeyFramePacket& packet, const std::string& world_frame);

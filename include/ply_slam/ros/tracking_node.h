@@ -4,6 +4,7 @@
 #include <message_filters/sync_policies/approximate_time.h>
 #include <message_filters/synchronizer.h>
 #include <nav_msgs/Path.h>
+#include <ply_slam/CameraMsg.h>
 #include <ply_slam/HandOverMap.h>
 #include <ply_slam/MapForTracker.h>
 #include <ply_slam/MapUpdateMsg.h>
@@ -119,7 +120,7 @@ class TrackingNode {
   std::optional<MapHandover> mapper_map_;
 
   std::unique_ptr<System> system_;  // made at the first frame (intrinsics from camera_info)
-  PinholeCamera camera_;            // system_'s; goes with each job (~mapping_apart)
+  CameraMsg job_camera_;            // system_'s camera; goes with each job (~mapping_apart)
   RgbdMessageDecoder decoder_;
   BadInputLog bad_input_;  // any thread: locks itself
 
