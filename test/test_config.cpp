@@ -643,5 +643,41 @@ TEST(ConfigText, AKeyThatIsNotANameIsAConfigError) {
   EXPECT_THROW(loadConfigFromString(base + "? [a, b]\n: 1\n", "test"), ConfigError);
 }
 
+// What a tracker apart and its mapping_node must agree on (ApartMappingSide refuses the rest).
+TEST(MappingSettings, OnlyTheKeysTheMappingSideReadsCount) {
+  const std::string base =
+      "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n";
+  auto config = [&](const std::string& more) { return loadConfigFromString(base + more, "test"); };
+  const SystemConfig plain = config("orb: {num_levels: 8}\nculling: {keyframe_redundancy: 0.9}\n");
+  EXPECT_TRUE(mappingSettingsThatDiffer(plain, plain).empty());
+  // The same values written otherwise, in another order, beside keys the mapping side does not
+  // read (another camera is the jobs' camera's business).
+  const SystemConfig same = loadConfigFromString(
+      "camera: {fx: 600, fy: 600, cx: 320, cy: 240, width: 640, height: 480}\n"
+      "culling: {keyframe_redundancy: 0.90}\ndense: {stride: 4}\n"
+      "tracking: {search_radius_px: 30}\norb: {num_levels: 8}\n",
+      "test");
+  EXPECT_TRUE(mappingSettingsThatDiffer(plain, same).empty());
+  // A section given in one and not the other differs whole; within one, key by key.
+  const SystemConfig other = config(
+      "orb: {num_levels: 4}\ntracking: {max_point_depth: 3, search_radius_px: 30}\n"
+      "loop: {enabled: false}\n");
+  EXPECT_EQ(
+      mappingSettingsThatDiffer(plain, other),
+      (std::vector<std::string>{"orb.num_levels", "loop", "culling", "tracking.max_point_depth"}));
+  EXPECT_EQ(mappingSettingsThatDiffer(other, plain), mappingSettingsThatDiffer(plain, other));
+}
+
+TEST(MappingSettings, UseCameraReachesThePlaceCheckToo) {
+  SystemConfig config = loadConfigFromString(
+      "camera: {fx: 500, fy: 500, cx: 320, cy: 240, width: 640, height: 480}\n", "test");
+  PinholeCamera camera = config.camera;
+  camera.fx = 615;
+  camera.depth_noise.alpha = 3e-4;
+  useCamera(config, camera);
+  EXPECT_EQ(config.camera.fx, 615);
+  EXPECT_EQ(config.loop.depth_noise.alpha, 3e-4);
+}
+
 }  // namespace
 }  // namespace ply_slam

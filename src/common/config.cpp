@@ -70,6 +70,44 @@ void rejectDuplicateKeys(const YAML::Node& node, const std::string& path,
   }
 }
 
+// The node at a dotted key; undefined when a part is missing.
+YAML::Node at(const YAML::Node& node, const std::string& dotted) {
+  const size_t dot = dotted.find('.');
+  const std::string part = dotted.substr(0, dot);
+  if (!node.IsMap() || !node[part]) return YAML::Node(YAML::NodeType::Undefined);
+  return dot == std::string::npos ? node[part] : at(node[part], dotted.substr(dot + 1));
+}
+
+bool sameScalar(const YAML::Node& a, const YAML::Node& b) {
+  double x = 0, y = 0;
+  if (YAML::convert<double>::decode(a, x) && YAML::convert<double>::decode(b, y)) return x == y;
+  return a.Scalar() == b.Scalar();
+}
+
+// The dotted keys under `key` whose values differ (one missing in either counts).
+void appendDifferingKeys(const YAML::Node& a, const YAML::Node& b, const std::string& key,
+                         std::vector<std::string>& differ) {
+  if (a.IsMap() && b.IsMap()) {
+    std::set<std::string> keys;
+    for (const auto& node : {a, b})
+      for (const auto& kv : node) keys.insert(kv.first.Scalar());
+    for (const std::string& k : keys)
+      appendDifferingKeys(a[k] ? a[k] : YAML::Node(YAML::NodeType::Undefined),
+                          b[k] ? b[k] : YAML::Node(YAML::NodeType::Undefined), key + "." + k,
+                          differ);
+    return;
+  }
+  bool same = a.Type() == b.Type();
+  if (same && a.IsScalar()) same = sameScalar(a, b);
+  if (same && a.IsSequence()) {
+    same = a.size() == b.size();
+    for (size_t i = 0; same && i < a.size(); ++i)
+      same = a[i].IsScalar() && b[i].IsScalar() ? sameScalar(a[i], b[i])
+                                                : YAML::Dump(a[i]) == YAML::Dump(b[i]);
+  }
+  if (!same) differ.push_back(key);
+}
+
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
@@ -77,6 +115,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
 
   SystemConfig config;
   config.source_path = path;
+  config.yaml = YAML::Dump(root);
   Section top(root, path, "");
   if (!root["camera"]) top.fail("camera", "section is required");
   readCamera(top.child("camera"), config.camera);
@@ -91,7 +130,7 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   config.dense = readDenseOptions(top.child("dense"));
   config.grid = readOccupancyGridOptions(top.child("grid"));
   config.loop = readLoopOptions(top.child("loop"));
-  config.loop.depth_noise = config.camera.depth_noise;
+  useCamera(config, config.camera);
   config.loop_correction = readLoopCorrectionOptions(top.child("loop_correction"));
   config.culling = readCullingOptions(top.child("culling"));
   top.rejectUnknownKeys();
@@ -137,6 +176,30 @@ MapperOptions mapperOptions(const SystemConfig& config) {
   o.max_point_depth = config.tracking.max_point_depth;
   o.mask_dilation_px = config.dynamic.mask_dilation_px;
   return o;
+}
+
+std::vector<std::string> mappingSettingsThatDiffer(const SystemConfig& a, const SystemConfig& b) {
+  // Whole sections, or one key of a section: what mapperOptions reads, the ORB section included.
+  static const char* const kMappingSideKeys[] = {"orb",
+                                                 "lines",
+                                                 "mapping",
+                                                 "loop",
+                                                 "loop_correction",
+                                                 "culling",
+                                                 "tracking.max_point_depth",
+                                                 "tracking.local_map_keyframes",
+                                                 "tracking.chi2_outlier",
+                                                 "dynamic.mask_dilation_px"};
+  const YAML::Node root_a = YAML::Load(a.yaml), root_b = YAML::Load(b.yaml);
+  std::vector<std::string> differ;
+  for (const std::string key : kMappingSideKeys)
+    appendDifferingKeys(at(root_a, key), at(root_b, key), key, differ);
+  return differ;
+}
+
+void useCamera(SystemConfig& config, const PinholeCamera& camera) {
+  config.camera = camera;
+  config.loop.depth_noise = camera.depth_noise;  // the place check weighs depths as the camera
 }
 
 }  // namespace ply_slam

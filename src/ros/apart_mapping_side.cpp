@@ -3,6 +3,7 @@
 #include <ply_slam/HandOverMap.h>
 #include <ros/serialization.h>
 
+#include <boost/algorithm/string/join.hpp>
 #include <boost/make_shared.hpp>
 
 #include "ply_slam/common/stopwatch.h"
@@ -47,7 +48,7 @@ void ApartMappingSide::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) 
   const ThreadCpuStopwatch cpu;
   MappingJob job;
   try {
-    adoptCamera(fromMsg(msg->camera));
+    adoptTracker(fromMsg(msg->camera), msg->config);
     job = fromMsg(*msg, JobReceiver{orb_scales_.get(),
                                     cv::Size(config_.camera.width, config_.camera.height)});
     mapping_->checkJob(job);
@@ -82,18 +83,37 @@ void ApartMappingSide::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) 
   receiver_.noteCallbackMs(watch.elapsedMs(), cpu.elapsedMs());
 }
 
-void ApartMappingSide::adoptCamera(const PinholeCamera& camera) {
-  if (sameCamera(camera, config_.camera)) return;
-  if (mapped_any_)
-    throw std::invalid_argument("the tracker's camera (" + intrinsicsText(camera) +
+void ApartMappingSide::adoptTracker(const PinholeCamera& camera, const std::string& yaml) {
+  if (yaml == tracker_yaml_ && sameCamera(camera, config_.camera)) return;
+  SystemConfig tracker = loadConfigFromString(yaml, "of the tracker (in its mapping job)");
+  useCamera(tracker, camera);
+  if (mapped_any_) {
+    checkSameMapping(tracker);
+    tracker_yaml_ = yaml;  // what differs the mapping side does not use
+    return;
+  }
+  if (const auto differ = mappingSettingsThatDiffer(options_.config, tracker); !differ.empty())
+    ROS_WARN_STREAM(
+        "mapping_node: maps with the tracker's settings, which differ from its own "
+        "~config in: "
+        << boost::algorithm::join(differ, ", "));
+  mapping_thread_->waitIdle();  // nothing was pushed: no job taken yet
+  auto scales = MappingBackEnd::orbScales(tracker.orb);  // the old map's, until it goes
+  mapping_ = MappingBackEnd::makeMappingSide(tracker, options_.map, scales.get());
+  orb_scales_ = std::move(scales);
+  config_ = std::move(tracker);
+  tracker_yaml_ = yaml;
+  ROS_INFO_STREAM("mapping_node: maps in the tracker's intrinsics: " << intrinsicsText(camera));
+}
+
+void ApartMappingSide::checkSameMapping(const SystemConfig& tracker) const {
+  if (!sameCamera(tracker.camera, config_.camera))
+    throw std::invalid_argument("the tracker's camera (" + intrinsicsText(tracker.camera) +
                                 ") is not the one this map was made with (" +
                                 intrinsicsText(config_.camera) + ")");
-  SystemConfig config = options_.config;
-  config.camera = camera;
-  mapping_thread_->waitIdle();  // nothing was pushed: no job taken yet
-  mapping_ = MappingBackEnd::makeMappingSide(config, options_.map, orb_scales_.get());
-  config_ = std::move(config);
-  ROS_INFO_STREAM("mapping_node: maps in the tracker's intrinsics: " << intrinsicsText(camera));
+  if (const auto differ = mappingSettingsThatDiffer(config_, tracker); !differ.empty())
+    throw std::invalid_argument("the tracker's settings are not those this map was made with: " +
+                                boost::algorithm::join(differ, ", ") + " differ");
 }
 
 // In the order made: each update to the tracker (whose copy follows them in turn), then to the
@@ -226,11 +246,12 @@ void ApartMappingSide::imagesToDenseMaps(const MappingJob& job) {
 }
 
 // A new mapping side from the tracker's copy (the old one's map is dropped with it).
-bool ApartMappingSide::takeOver(const MapSnapshot& snapshot, uint64_t next_job) {
+bool ApartMappingSide::takeOver(const MapSnapshot& snapshot, const MapSnapshotMsg& msg) {
   if (!awaiting_handover_ || snapshot.handover.map_file.empty()) return false;
   mapping_thread_->waitIdle();
   std::unique_ptr<MappingSide> fresh;
   try {
+    adoptTracker(fromMsg(msg.camera), msg.config);  // before any job: the copy's settings
     fresh = MappingBackEnd::makeMappingSide(config_, "", orb_scales_.get());
     fresh->takeOver(snapshot.handover, orb_scales_.get());
   } catch (const std::exception& e) {
@@ -239,7 +260,9 @@ bool ApartMappingSide::takeOver(const MapSnapshot& snapshot, uint64_t next_job) 
   }
   mapping_thread_->takeFinished();  // none: nothing was pushed while waiting
   mapping_ = std::move(fresh);
+  mapped_any_ = true;  // the map is the tracker's, made with its settings
   awaiting_handover_ = false;
+  const uint64_t next_job = msg.next_keyframe_sequence;
   job_sequence_.resynchronise(next_job);
   mapHeldJobs(next_job);
   ROS_INFO_STREAM("mapping_node: maps on from the tracker's copy: "

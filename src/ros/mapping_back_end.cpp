@@ -19,12 +19,15 @@ std::unique_ptr<MappingSide> MappingBackEnd::makeMappingSide(
   return mapping;
 }
 
+std::shared_ptr<const std::vector<double>> MappingBackEnd::orbScales(const OrbOptions& orb) {
+  return std::make_shared<const std::vector<double>>(OrbExtractor(orb).scales());
+}
+
 MappingBackEnd MappingBackEnd::fromOptions(const MappingNodeOptions& options) {
   const SystemConfig& config = options.config;
   MappingBackEnd back_end;
   if (options.map_keyframes) {
-    back_end.orb_scales =
-        std::make_shared<const std::vector<double>>(OrbExtractor(config.orb).scales());
+    back_end.orb_scales = orbScales(config.orb);
     back_end.mapping = makeMappingSide(config, options.map, back_end.orb_scales.get());
   }
   if (!config.dense.enabled) return back_end;

@@ -240,7 +240,7 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
     return;
   }
   // Apart, only a handover asked for counts.
-  if (apart_ && !apart_->takeOver(snapshot, msg->next_keyframe_sequence)) return;
+  if (apart_ && !apart_->takeOver(snapshot, *msg)) return;
   const std::vector<KeyFramePacket>& keyframes = snapshot.keyframes;
   Trajectory& poses = snapshot.trajectory;
   MapUpdate placed;

@@ -13,7 +13,7 @@ TrackingBackEnd TrackingBackEnd::fromOptions(const TrackingNodeOptions& options)
   const bool segmented = back_end.segmenter != nullptr;
   back_end.make_system = [options, segmented](const PinholeCamera& camera, bool load_map) {
     SystemConfig config = options.config;
-    config.camera = camera;
+    useCamera(config, camera);
     if (!segmented) config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
     const MappingMode mode = options.mapping_apart    ? MappingMode::kApart
                              : options.mapping_thread ? MappingMode::kOwnThread

@@ -247,6 +247,8 @@ TrackingNode::Answer TrackingNode::handOver(uint64_t next_job, uint64_t next_upd
   snapshot.header.stamp = ros::Time::now();
   snapshot.next_keyframe_sequence = keyframes_;
   snapshot.next_update_sequence = updates_;
+  snapshot.camera = job_camera_;  // the mapping side maps on in them, as with the jobs
+  snapshot.config = options_.config.yaml;
   snapshot_pub_.publish(snapshot);
   return {true, "the mapping side expected job " + std::to_string(next_job) + " of " +
                     std::to_string(keyframes_) + ": handed over " +
@@ -523,6 +525,7 @@ void TrackingNode::publishJobs(const ros::Time& stamp) {
   for (const MappingJob& job : outgoing_) {
     MappingJobMsg msg = toMsg(job, options_.world_frame);
     msg.camera = job_camera_;
+    msg.config = options_.config.yaml;  // the mapping side maps with the tracker's settings
     msg.header.stamp = stamp;
     msg.sequence = keyframes_++;
     job_pub_.publish(msg);

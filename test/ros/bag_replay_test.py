@@ -4,7 +4,8 @@ at rate 1 into the running tracking_node + mapping_node, saves the trajectory th
 mapper's service and checks: every frame synchronised and tracked, ATE within the allowed factor
 of the offline ply_slam_tum run on the same frames; the occupancy grid is published and saved in
 map_server's format; ~path comes at most once per ~path_period and its last poses are not held
-back when the stream ends."""
+back when the stream ends. Apart (~apart, the default), mapping_node mapped every keyframe: the
+tracker followed an update for each."""
 import os
 import shutil
 import subprocess
@@ -33,6 +34,9 @@ class BagReplay(unittest.TestCase):
         support.wait_for_nodes()
         subprocess.run(["rosbag", "play", "--quiet", "--delay=1", "--rate=1", bag], check=True)
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= offline_frames, 30)
+        apart = rospy.get_param("~apart", True)
+        if apart:
+            stats.wait_until(lambda s: s.get("updates_followed") >= s.get("keyframes"), 30)
 
         trajectory = os.path.join(work, "ros_trajectory.txt")
         support.save_trajectory(trajectory)
@@ -45,6 +49,10 @@ class BagReplay(unittest.TestCase):
         self.assertEqual(stats.get("tracked"), offline_frames)
         self.assertEqual(ate["pairs"], offline_frames)
         self.assertLessEqual(ate["rmse"], factor * offline_ate)
+        if apart:
+            self.assertGreater(stats.get("keyframes"), 0)
+            self.assertGreaterEqual(stats.get("updates_followed"), stats.get("keyframes"),
+                                    "mapping_node did not map every keyframe (see its log)")
         support.check_grid(self, os.path.join(work, "saved_map"))
         path.check(self, rospy.get_param("~path_period", 1.0))
 

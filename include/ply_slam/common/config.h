@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "ply_slam/common/config_error.h"
 #include "ply_slam/common/pinhole_camera.h"
@@ -23,6 +24,7 @@ namespace ply_slam {
 // (*_options_yaml.h) and handed to the components of that module alone.
 struct SystemConfig {
   std::string source_path;  // the file it was loaded from
+  std::string yaml;         // the document as parsed (a tracker apart sends it with its jobs)
   PinholeCamera camera;
   OrbOptions orb;
   LineOptions lines;
@@ -48,5 +50,12 @@ SystemConfig loadConfigFromString(const std::string& yaml_text, const std::strin
 
 // What the mapping side takes of the config.
 MapperOptions mapperOptions(const SystemConfig& config);
+// The keys of what the mapping side takes (mapperOptions, and the ORB pyramid its keyframes'
+// features come in) whose values differ between the two configs' documents, dotted
+// ("orb.num_levels"); numbers compare as numbers. A key given in one and left to its default in
+// the other counts as differing.
+std::vector<std::string> mappingSettingsThatDiffer(const SystemConfig& a, const SystemConfig& b);
+// The config with another camera (a camera_info's, a tracker's), everywhere it is used.
+void useCamera(SystemConfig& config, const PinholeCamera& camera);
 
 }  // namespace ply_slam

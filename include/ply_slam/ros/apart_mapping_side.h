@@ -1,6 +1,7 @@
 #pragma once
 
 #include <ply_slam/MapForTracker.h>
+#include <ply_slam/MapSnapshotMsg.h>
 #include <ply_slam/MapUpdateMsg.h>
 #include <ply_slam/MappingJobMsg.h>
 #include <ros/ros.h>
@@ -49,7 +50,7 @@ class ApartMappingSide {
 
   const MappingSide& mapping() const { return *mapping_; }
   // A map snapshot from the tracker: taken over (true) when it is the handover asked for.
-  bool takeOver(const MapSnapshot& snapshot, uint64_t next_job);
+  bool takeOver(const MapSnapshot& snapshot, const MapSnapshotMsg& msg);
   size_t loopsClosed() const { return loops_closed_; }
   std::string jobTopic() const { return job_sub_.getTopic(); }
   std::string updateTopic() const { return update_pub_.getTopic(); }
@@ -67,13 +68,16 @@ class ApartMappingSide {
   bool onMapForTracker(MapForTracker::Request& request, MapForTracker::Response& response);
   void onUpdatesWanted(const std_msgs::UInt64ConstPtr& msg);
   void keepSent(MapUpdateMsg::ConstPtr update);
-  // The mapping side maps in the tracker's intrinsics (camera_info's, or its config's), which
-  // each job carries: made anew with them before the first job; after it, others are refused.
-  void adoptCamera(const PinholeCamera& camera);
+  // The mapping side maps in the tracker's intrinsics (camera_info's, or its config's) and with
+  // its settings (ORB pyramid, BA, culling, loop closure), which each job carries: made anew
+  // with them before the first job; after it, a job with others is refused.
+  void adoptTracker(const PinholeCamera& camera, const std::string& yaml);
+  void checkSameMapping(const SystemConfig& tracker) const;  // throws std::invalid_argument
 
   const MappingNodeOptions& options_;
-  SystemConfig config_;      // options_.config with the tracker's camera
-  bool mapped_any_ = false;  // a job was taken since the start
+  SystemConfig config_;       // the tracker's config and camera (options_.config until a job)
+  std::string tracker_yaml_;  // the tracker's config document, as its last job had it
+  bool mapped_any_ = false;   // a job was taken since the start
   MappedReceiver& receiver_;
   BadInputLog& bad_input_;
   // The ORB scales first: the map's keyframes point to them.

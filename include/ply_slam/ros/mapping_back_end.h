@@ -29,6 +29,8 @@ struct MappingBackEnd {
   static std::unique_ptr<MappingSide> makeMappingSide(const SystemConfig& config,
                                                       const std::string& map_folder,
                                                       const std::vector<double>* orb_scales);
+  // The ORB pyramid's scale per level, on the heap.
+  static std::shared_ptr<const std::vector<double>> orbScales(const OrbOptions& orb);
 };
 
 }  // namespace ply_slam
