@@ -28,8 +28,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 ATE_LIMIT = 0.02  # m: the office alone gives ~0.002 offline; 10x means something went wrong
 # Where each malformed kind must show up: the tracker's ~stats key, or the mapper's log kind.
-TRACKER_KEYS = ("encoding", "size", "empty", "camera_info", "stamp", "unpaired")
-MAPPER_KINDS = ("keyframe", "pose", "map_update")
+TRACKER_KEYS = ("encoding", "size", "empty", "camera_info", "stamp", "unpaired", "map_update")
+MAPPER_KINDS = ("mapping_job", "pose")
 
 
 def read(path):
