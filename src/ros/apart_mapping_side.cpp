@@ -87,23 +87,29 @@ void ApartMappingSide::adoptTracker(const PinholeCamera& camera, const std::stri
   if (yaml == tracker_yaml_ && sameCamera(camera, config_.camera)) return;
   SystemConfig tracker = loadConfigFromString(yaml, "of the tracker (in its mapping job)");
   useCamera(tracker, camera);
-  if (mapped_any_) {
+  if (mapped_any_ || sameMapping(tracker)) {
     checkSameMapping(tracker);
     tracker_yaml_ = yaml;  // what differs the mapping side does not use
     return;
   }
+  // Before the first job, with other settings or intrinsics: a mapping side made with them.
   if (const auto differ = mappingSettingsThatDiffer(options_.config, tracker); !differ.empty())
     ROS_WARN_STREAM(
         "mapping_node: maps with the tracker's settings, which differ from its own "
         "~config in: "
         << boost::algorithm::join(differ, ", "));
-  mapping_thread_->waitIdle();  // nothing was pushed: no job taken yet
+  mapping_thread_->waitIdle();                           // nothing was pushed: no job taken yet
   auto scales = MappingBackEnd::orbScales(tracker.orb);  // the old map's, until it goes
   mapping_ = MappingBackEnd::makeMappingSide(tracker, options_.map, scales.get());
   orb_scales_ = std::move(scales);
   config_ = std::move(tracker);
   tracker_yaml_ = yaml;
   ROS_INFO_STREAM("mapping_node: maps in the tracker's intrinsics: " << intrinsicsText(camera));
+}
+
+bool ApartMappingSide::sameMapping(const SystemConfig& tracker) const {
+  return sameCamera(tracker.camera, config_.camera) &&
+         mappingSettingsThatDiffer(config_, tracker).empty();
 }
 
 void ApartMappingSide::checkSameMapping(const SystemConfig& tracker) const {

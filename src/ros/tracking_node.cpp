@@ -5,7 +5,6 @@
 #include <ply_slam/KeyFrameMsg.h>
 #include <ply_slam/MapSnapshotMsg.h>
 #include <std_msgs/String.h>
-#include <std_msgs/UInt64.h>
 
 #include <algorithm>
 #include <chrono>
@@ -56,12 +55,12 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNode
   tracking_image_pub_ = pnh_.advertise<sensor_msgs::Image>("tracking_image", 1);
   if (options_.mapping_apart) {
     job_pub_ = pnh_.advertise<MappingJobMsg>("mapping_job", 100);
-    mapper_update_sub_ =
-        nh_.subscribe(options_.mapper_update_topic, 100, &TrackingNode::onMapperUpdate, this);
-    updates_wanted_pub_ = pnh_.advertise<std_msgs::UInt64>("updates_wanted", 10);
-    last_update_arrival_ = ros::WallTime::now();
-    update_check_timer_ = nh_.createWallTimer(
-        ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { checkMapperUpdates(); });
+    // The lock taken before the worker is woken: it cannot be between its check and its wait.
+    mapper_updates_ = std::make_unique<MapperUpdateFeed>(
+        nh_, pnh_, options_.mapper_update_topic, bad_input_, [this] {
+          { std::lock_guard<std::mutex> lock(queue_mutex_); }
+          queue_cv_.notify_one();
+        });
     // Before hand_over_map is offered: mapping_node cannot be asking it meanwhile (each would
     // wait for the other's single spinner).
     askMapperForItsMap();
@@ -237,10 +236,7 @@ TrackingNode::Answer TrackingNode::handOver(uint64_t next_job, uint64_t next_upd
     return {false, "nothing to hand over: every job went to the mapping side (" +
                        std::to_string(next_job) + ")"};
   if (!system_) return {false, "nothing to hand over: no frame has arrived"};
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    mapper_updates_.restartAt(next_update);
-  }
+  mapper_updates_->restartAt(next_update);
   MapSnapshot map{system_->sparseKeyFramePackets(), system_->cameraTrajectory(),
                   system_->handOverMap()};
   MapSnapshotMsg snapshot = toMsg(map, options_.world_frame);
@@ -304,7 +300,8 @@ void TrackingNode::work() {
       // Between frames the mapping thread's results go out too: a loop closed after the last
       // frame must not wait for the next one.
       idle = !queue_cv_.wait_for(lock, kMappedPollPeriod, [this] {
-        return stopping_ || !queue_.empty() || (system_ && mapper_updates_.ready());
+        return stopping_ || !queue_.empty() ||
+               (system_ && mapper_updates_ && mapper_updates_->ready());
       });
       if (stopping_) return;  // shutting down: frames still waiting are not tracked
       idle = idle || queue_.empty();
@@ -399,84 +396,10 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
   publishJobs(rgb.header.stamp);
 }
 
-// The mapping side's updates, followed in the order it made them (each builds on the one before):
-// one that comes early waits until those before it come again (checkMapperUpdates).
-void TrackingNode::onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg) {
-  MapUpdate update;
-  try {
-    update = fromMsg(*msg);
-  } catch (const std::exception& e) {
-    bad_input_.report("map_update", e.what());
-    return;
-  }
-  last_update_arrival_ = ros::WallTime::now();
-  quiet_asked_ = false;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    // False: sent again and here already, or made before a handover (that side started anew).
-    if (!mapper_updates_.push(msg->sequence, std::move(update))) return;
-  }
-  queue_cv_.notify_one();
-  checkMapperUpdates();
-}
-
-void TrackingNode::checkMapperUpdates() {
-  std::optional<uint64_t> missing;
-  uint64_t next = 0;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    missing = mapper_updates_.firstMissing();
-    next = mapper_updates_.next();
-  }
-  const ros::WallTime now = ros::WallTime::now();
-  if (!missing) {
-    hole_.reset();
-    if (quiet_asked_ || (now - last_update_arrival_).toSec() < kQuietUpdates) return;
-    quiet_asked_ = true;
-    askForUpdates(next);  // usually none went by: nothing comes
-    return;
-  }
-  if (hole_ != missing) {  // a new gap
-    hole_ = missing;
-    hole_seen_at_ = now;
-    ROS_WARN_STREAM("tracking_node: map update " << *missing << " from the mapping side is "
-                                                 << "missing; asked for it again");
-    askForUpdates(*missing);
-    return;
-  }
-  if ((now - hole_seen_at_).toSec() < kGiveUpUpdates) {
-    if ((now - updates_asked_at_).toSec() >= kAskUpdatesAgain) askForUpdates(*missing);
-    return;
-  }
-  uint64_t lost = 0;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    lost = mapper_updates_.skipMissing();
-  }
-  updates_lost_ += lost;
-  hole_.reset();
-  queue_cv_.notify_one();
-  ROS_ERROR_STREAM("tracking_node: map updates " << *missing << " to " << *missing + lost - 1
-                                                 << " from the mapping side never came; the "
-                                                    "tracker's copy of the map goes on without");
-}
-
-void TrackingNode::askForUpdates(uint64_t from) {
-  std_msgs::UInt64 msg;
-  msg.data = from;
-  updates_wanted_pub_.publish(msg);
-  updates_asked_at_ = ros::WallTime::now();
-  ++updates_asked_;
-}
-
 // Updates wait for the System (made at the first frame, in the map they build on).
 bool TrackingNode::followMapper() {
-  if (!system_) return false;
-  std::vector<MapUpdate> updates;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    updates = mapper_updates_.takeReady();
-  }
+  if (!system_ || !mapper_updates_) return false;
+  const std::vector<MapUpdate> updates = mapper_updates_->takeReady();
   if (updates.empty()) return false;
   const ThreadCpuStopwatch cpu;
   for (const MapUpdate& update : updates) system_->followMapUpdate(update);
@@ -502,10 +425,7 @@ void TrackingNode::askMapperForItsMap() {
     return;
   }
   const MapForTracker::Response& r = ask.response;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    mapper_updates_.restartAt(r.next_update_sequence);
-  }
+  mapper_updates_->restartAt(r.next_update_sequence);
   ROS_INFO_STREAM("tracking_node: " << client.getService() << ": " << r.message);
   if (r.map_file.empty()) return;
   try {
@@ -606,7 +526,7 @@ void TrackingNode::publishMapped(const std::vector<MappedKeyFrame>& mapped) {
 
 void TrackingNode::publishSnapshot() {
   MapSnapshot map;
-  if (system_) map = {system_->sparseKeyFramePackets(), system_->cameraTrajectory()};
+  if (system_) map = {system_->sparseKeyFramePackets(), system_->cameraTrajectory(), {}};
   MapSnapshotMsg snapshot = toMsg(map, options_.world_frame);
   snapshot.header.stamp = ros::Time::now();
   snapshot.next_keyframe_sequence = keyframes_;
@@ -623,10 +543,11 @@ void TrackingNode::publishStats() {
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
-    << " updates_followed=" << updates_followed_ << " updates_asked=" << updates_asked_
-    << " updates_lost=" << updates_lost_ << " follow_cpu_ms_max=" << longest_follow_cpu_ms_
-    << " dropped_behind=" << behind_dropped_ << " skipped_bad=" << bad_input_.total()
-    << " median_ms=" << median(total_ms_, 0.0);
+    << " updates_followed=" << updates_followed_
+    << " updates_asked=" << (mapper_updates_ ? mapper_updates_->asked() : 0)
+    << " updates_lost=" << (mapper_updates_ ? mapper_updates_->lost() : 0)
+    << " follow_cpu_ms_max=" << longest_follow_cpu_ms_ << " dropped_behind=" << behind_dropped_
+    << " skipped_bad=" << bad_input_.total() << " median_ms=" << median(total_ms_, 0.0);
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

@@ -24,8 +24,8 @@
 #include <optional>
 #include <thread>
 
-#include "ply_slam/common/in_order_queue.h"
 #include "ply_slam/ros/bad_input_log.h"
+#include "ply_slam/ros/mapper_update_feed.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
 #include "ply_slam/ros/tracking_back_end.h"
 #include "ply_slam/ros/tracking_node_options.h"
@@ -91,15 +91,9 @@ class TrackingNode {
   void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
                const FrameResult& result);
   void publishStats();
-  // ~mapping_apart: the mapping side's updates, in, and the tracker's keyframes, out.
-  void onMapperUpdate(const ply_slam::MapUpdateMsgConstPtr& msg);
-  bool followMapper();  // true when it followed any
-  // ~mapping_apart, on the spinner: an update missing asks mapping_node to send again from it
-  // (~updates_wanted), at most every kAskUpdatesAgain; after kGiveUpUpdates the copy goes on
-  // without it. After kQuietUpdates without updates the same is asked once (a last update lost
-  // shows no gap).
-  void checkMapperUpdates();
-  void askForUpdates(uint64_t from);
+  // ~mapping_apart: the mapping side's updates followed (true when any), the tracker's keyframes
+  // sent.
+  bool followMapper();
   void publishJobs(const ros::Time& stamp);
   void addToPath(const geometry_msgs::PoseStamped& pose, const Eigen::Isometry3d& T_wc);
   void sendPath();
@@ -128,10 +122,7 @@ class TrackingNode {
   std::unique_ptr<message_filters::Synchronizer<SyncPolicy>> sync_;
   ros::Subscriber info_sub_;
   ros::Publisher pose_pub_, path_pub_, keyframe_pub_, map_update_pub_, snapshot_pub_, stats_pub_;
-  ros::Publisher job_pub_;             // ~mapping_apart
-  ros::Subscriber mapper_update_sub_;  // ~mapping_apart
-  ros::Publisher updates_wanted_pub_;  // ~mapping_apart
-  ros::WallTimer update_check_timer_;  // ~mapping_apart: checkMapperUpdates
+  ros::Publisher job_pub_;  // ~mapping_apart
   ros::ServiceServer resend_srv_, save_map_srv_, hand_over_srv_;
   ros::Publisher tracking_image_pub_, segmentation_image_pub_;
   nav_msgs::Path path_;  // worker thread only, as last_path_pose_ and total_ms_
@@ -158,15 +149,10 @@ class TrackingNode {
   std::mutex queue_mutex_;            // guards queue_ and stopping_
   std::condition_variable queue_cv_;  // queue_ grew or stopping_ was set
   std::deque<Job> queue_;             // under queue_mutex_
-  // ~mapping_apart: the mapping side's updates by sequence, given to the worker in that order.
-  // After a handover those numbered before the mapping side's next are dropped (restartAt).
-  InOrderQueue<MapUpdate> mapper_updates_;  // under queue_mutex_
-  bool stopping_ = false;                   // under queue_mutex_
-  // checkMapperUpdates' state, spinner thread only.
-  static constexpr double kAskUpdatesAgain = 1.0, kGiveUpUpdates = 5.0, kQuietUpdates = 2.0;  // s
-  ros::WallTime last_update_arrival_, updates_asked_at_, hole_seen_at_;
-  std::optional<uint64_t> hole_;  // the first missing update when it was seen
-  bool quiet_asked_ = false;
+  bool stopping_ = false;             // under queue_mutex_
+  // ~mapping_apart: the mapping side's updates in order, for the worker (locks itself). After a
+  // handover those numbered before the mapping side's next are dropped (restartAt).
+  std::unique_ptr<MapperUpdateFeed> mapper_updates_;
   std::thread worker_;
 
   // Counters for ~stats and the shutdown report (atomic: counted on one thread, read on both);
@@ -174,7 +160,7 @@ class TrackingNode {
   // what it missed from the gaps).
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
-      updates_{0}, loops_{0}, updates_followed_{0}, updates_asked_{0}, updates_lost_{0};
+      updates_{0}, loops_{0}, updates_followed_{0};
   std::vector<double> total_ms_;  // worker thread only
 };
 
