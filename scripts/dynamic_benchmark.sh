@@ -72,9 +72,9 @@ run bonn_yolo480x640_full "$BONN" yolo full 480x640
 run bonn_yolo480x640_full_live "$BONN" yolo full 480x640 --live
 unset RUN_CONFIG
 
-/usr/bin/python3 - "$ROWS" "${PLY_SLAM_ROOT}/docs/RESULTS.md" "$COMMAND" <<'PY'
+/usr/bin/python3 - "$ROWS" "$OUT/section.md" "$COMMAND" <<'PY'
 import json, sys
-rows, results, command = sys.argv[1], sys.argv[2], sys.argv[3]
+rows, section, command = sys.argv[1], sys.argv[2], sys.argv[3]
 lines = ["Command: `%s` (config/tum_fr1.yaml; walkers = fr1_rpy_150_349_walkers, static = its twin "
          "rgbd_dataset_freiburg1_rpy_150_349; bonn = rgbd_bonn_crowd_150_449 with config/bonn.yaml, "
          "live = --live). Walker features: keypoints on a ground-truth walker mask; "
@@ -101,13 +101,9 @@ for line in open(rows):
         pct("walker_kept_share"), pct("walker_inlier_share"), pct("static_dropped_share"),
         ghost("points_share"), ghost("voxels_majority_share"),
         s["tracking_ms_median"], "%.0f" % s["segmentation_ms_median"] if seg != "none" else "–"))
-text = open(results).read()
-begin, end = "<!-- dynamic:begin -->", "<!-- dynamic:end -->"
-table = begin + "\n" + "\n".join(lines) + "\n" + end
-if begin in text:
-    text = text[:text.index(begin)] + table + text[text.index(end) + len(end):]
-else:
-    text += "\n" + table + "\n"
-open(results, "w").write(text)
+with open(section, "w") as f:
+    f.write("<!-- dynamic:begin -->\n" + "\n".join(lines) + "\n<!-- dynamic:end -->\n")
 print("\n".join(lines))
 PY
+/usr/bin/python3 "${PLY_SLAM_ROOT}/scripts/results_section.py" dynamic "${PLY_SLAM_ROOT}/docs/RESULTS.md" \
+  "$OUT/section.md"

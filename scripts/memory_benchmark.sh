@@ -72,11 +72,10 @@ STATUS=0
 wait "$DENSE_RUN" || STATUS=1
 wait "$SPARSE_RUN" || STATUS=1
 
-/usr/bin/python3 - "${OUT_ROOT}/${SCENE}_${FRAMES}" "${PLY_SLAM_ROOT}/docs/RESULTS.md" \
-  "$COMMAND" "$SCENE" <<'PY' || STATUS=1
-import csv, json, os, sys, time
+/usr/bin/python3 - "${OUT_ROOT}/${SCENE}_${FRAMES}" "$COMMAND" "$SCENE" <<'PY' || STATUS=1
+import csv, json, sys, time
 
-prefix, results, command, scene = sys.argv[1:5]
+prefix, command, scene = sys.argv[1:4]
 LIMIT = 1.5  # the target: RSS at the end within 1.5 x its value at frame 1000
 
 
@@ -139,17 +138,15 @@ for name, label in (("dense", "with dense maps"), ("no_dense", "without dense ma
             f"{dense['octree_bytes'] / 2**20:.1f} MB of octree.")
 lines.append("<!-- memory:end -->")
 section = "\n".join(lines)
-
-begin, end = "<!-- memory:begin -->", "<!-- memory:end -->"
-text = open(results).read() if os.path.exists(results) else "# Results\n"
-if begin in text and end in text:
-    text = text[:text.index(begin)] + section + text[text.index(end) + len(end):]
-else:
-    text = text.rstrip("\n") + "\n\n" + section + "\n"
-with open(results, "w") as f:
-    f.write(text)
+with open(f"{prefix}_section.md", "w") as f:
+    f.write(section + "\n")
 print(section)
 sys.exit(0 if ok else 1)
 PY
-echo "[memory] table written to ${PLY_SLAM_ROOT}/docs/RESULTS.md"
+if /usr/bin/python3 "${PLY_SLAM_ROOT}/scripts/results_section.py" memory \
+  "${PLY_SLAM_ROOT}/docs/RESULTS.md" "${OUT_ROOT}/${SCENE}_${FRAMES}_section.md"; then
+  echo "[memory] table written to ${PLY_SLAM_ROOT}/docs/RESULTS.md"
+else
+  STATUS=1
+fi
 exit $STATUS
