@@ -87,17 +87,25 @@ void ApartMappingSide::adoptTracker(const PinholeCamera& camera, const std::stri
   if (yaml == tracker_yaml_ && sameCamera(camera, config_.camera)) return;
   SystemConfig tracker = loadConfigFromString(yaml, "of the tracker (in its mapping job)");
   useCamera(tracker, camera);
-  if (mapped_any_ || sameMapping(tracker)) {
-    checkSameMapping(tracker);
+  const bool same_camera = sameCamera(camera, config_.camera);
+  const std::vector<std::string> differ = mappingSettingsThatDiffer(config_, tracker);
+  if (mapped_any_ && !same_camera)
+    throw std::invalid_argument("the tracker's camera (" + intrinsicsText(camera) +
+                                ") is not the one this map was made with (" +
+                                intrinsicsText(config_.camera) + ")");
+  if (mapped_any_ && !differ.empty())
+    throw std::invalid_argument("the tracker's settings are not those this map was made with: " +
+                                boost::algorithm::join(differ, ", ") + " differ");
+  if (same_camera && differ.empty()) {
     tracker_yaml_ = yaml;  // what differs the mapping side does not use
     return;
   }
   // Before the first job, with other settings or intrinsics: a mapping side made with them.
-  if (const auto differ = mappingSettingsThatDiffer(options_.config, tracker); !differ.empty())
+  if (const auto own = mappingSettingsThatDiffer(options_.config, tracker); !own.empty())
     ROS_WARN_STREAM(
         "mapping_node: maps with the tracker's settings, which differ from its own "
         "~config in: "
-        << boost::algorithm::join(differ, ", "));
+        << boost::algorithm::join(own, ", "));
   mapping_thread_->waitIdle();                           // nothing was pushed: no job taken yet
   auto scales = MappingBackEnd::orbScales(tracker.orb);  // the old map's, until it goes
   mapping_ = MappingBackEnd::makeMappingSide(tracker, options_.map, scales.get());
@@ -105,21 +113,6 @@ void ApartMappingSide::adoptTracker(const PinholeCamera& camera, const std::stri
   config_ = std::move(tracker);
   tracker_yaml_ = yaml;
   ROS_INFO_STREAM("mapping_node: maps in the tracker's intrinsics: " << intrinsicsText(camera));
-}
-
-bool ApartMappingSide::sameMapping(const SystemConfig& tracker) const {
-  return sameCamera(tracker.camera, config_.camera) &&
-         mappingSettingsThatDiffer(config_, tracker).empty();
-}
-
-void ApartMappingSide::checkSameMapping(const SystemConfig& tracker) const {
-  if (!sameCamera(tracker.camera, config_.camera))
-    throw std::invalid_argument("the tracker's camera (" + intrinsicsText(tracker.camera) +
-                                ") is not the one this map was made with (" +
-                                intrinsicsText(config_.camera) + ")");
-  if (const auto differ = mappingSettingsThatDiffer(config_, tracker); !differ.empty())
-    throw std::invalid_argument("the tracker's settings are not those this map was made with: " +
-                                boost::algorithm::join(differ, ", ") + " differ");
 }
 
 // In the order made: each update to the tracker (whose copy follows them in turn), then to the

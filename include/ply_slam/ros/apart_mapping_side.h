@@ -70,12 +70,9 @@ class ApartMappingSide {
   void keepSent(MapUpdateMsg::ConstPtr update);
   // The mapping side maps in the tracker's intrinsics (camera_info's, or its config's) and with
   // its settings (ORB pyramid, BA, culling, loop closure), which each job carries: made anew
-  // with them before the first job; after it, a job with others is refused.
+  // with them before the first job; after it, a job with others is refused
+  // (std::invalid_argument naming what differs).
   void adoptTracker(const PinholeCamera& camera, const std::string& yaml);
-  // Whether the mapping side was made with the tracker's camera and mapping settings; the check
-  // throws std::invalid_argument naming what differs.
-  bool sameMapping(const SystemConfig& tracker) const;
-  void checkSameMapping(const SystemConfig& tracker) const;
 
   const MappingNodeOptions& options_;
   SystemConfig config_;       // the tracker's config and camera (options_.config until a job)
