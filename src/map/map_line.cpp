@@ -24,4 +24,9 @@ void MapLine::fuse(const Eigen::Vector3d& fit_start, const Eigen::Vector3d& fit_
   end_weight += weight_end;
 }
 
+void MapLine::moveBy(const Eigen::Isometry3d& move) {
+  start = move * start;
+  end = move * end;
+}
+
 }  // namespace ply_slam

@@ -22,4 +22,9 @@ void MapPoint::fuse(const Eigen::Vector3d& measured, double weight) {
   position_weight += weight;
 }
 
+void MapPoint::moveBy(const Eigen::Isometry3d& move) {
+  position = move * position;
+  normal = move.linear() * normal;
+}
+
 }  // namespace ply_slam

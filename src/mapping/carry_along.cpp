@@ -22,15 +22,11 @@ void carryAlong(Map& map, const std::set<const KeyFrame*>& solved,
   if (carried.empty()) return;
   for (const auto& point : map.mapPoints()) {
     if (point->bad || !carried.count(point->first_keyframe_id)) continue;
-    const Eigen::Isometry3d& move = moved.at(point->first_keyframe_id);
-    point->position = move * point->position;
-    point->normal = move.linear() * point->normal;
+    point->moveBy(moved.at(point->first_keyframe_id));
   }
   for (const auto& line : map.mapLines()) {
     if (line->bad || !carried.count(line->first_keyframe_id)) continue;
-    const Eigen::Isometry3d& move = moved.at(line->first_keyframe_id);
-    line->start = move * line->start;
-    line->end = move * line->end;
+    line->moveBy(moved.at(line->first_keyframe_id));
   }
 }
 

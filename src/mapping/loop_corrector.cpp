@@ -180,17 +180,13 @@ void LoopCorrector::moveLandmarks(const std::vector<std::shared_ptr<KeyFrame>>& 
     if (point->bad) continue;
     const KeyFrame* reference = referenceOf(*point, index);
     if (!reference) continue;
-    const Eigen::Isometry3d move = moveOf(reference);
-    point->position = move * point->position;
-    point->normal = move.linear() * point->normal;
+    point->moveBy(moveOf(reference));
   }
   for (const auto& line : map_.mapLines()) {
     if (line->bad) continue;
     const auto it = index.find(line->first_keyframe_id);
     if (it == index.end()) continue;
-    const Eigen::Isometry3d move = moveOf(it->second);
-    line->start = move * line->start;
-    line->end = move * line->end;
+    line->moveBy(moveOf(it->second));
   }
 }
 

@@ -257,6 +257,7 @@ MappingJobMsg toMsg(const MappingJob& job, const std::string& world_frame) {
   m.line_slots = static_cast<uint32_t>(kf.map_lines.size());
   m.report = toMsg(job.report);
   m.followed_updates = static_cast<uint64_t>(job.followed_updates);
+  m.followed_at_keyframe = static_cast<uint64_t>(job.followed_at_keyframe);
   m.reference_keyframe = job.reference_keyframe;
   m.loaded_map = job.loaded_map;
   m.depth_stamp = job.images.depth_stamp;
@@ -274,6 +275,13 @@ MappingJob fromMsg(const MappingJobMsg& m, const JobReceiver& receiver) {
   job.report = fromMsg(m.report);
   checkLinks(job.report, *job.keyframe);
   job.followed_updates = static_cast<long>(m.followed_updates);
+  job.followed_at_keyframe = static_cast<long>(m.followed_at_keyframe);
+  if (m.followed_at_keyframe < m.followed_updates)
+    throw std::invalid_argument(
+        "the job says its tracker had followed " + std::to_string(m.followed_updates) +
+        " updates when the report began"
+        " but " +
+        std::to_string(m.followed_at_keyframe) + " when it made the keyframe");
   job.reference_keyframe = m.reference_keyframe;
   job.loaded_map = m.loaded_map;
   job.images.stamp = job.keyframe->stamp;

@@ -19,8 +19,10 @@ MappingSide::MappingSide(const SystemConfig& config, bool follows_reports, bool 
       file_setup_(fileSetup(config, mapper_.orbVocabulary(), mapper_.lbdVocabulary())) {
   // Whoever tracks in a copy moves along when it follows the update that says so.
   if (follows_reports_)
-    mapper_.setCorrectionListener(
-        [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
+    mapper_.setCorrectionListener([this](const Eigen::Isometry3d& correction) {
+      corrections_.push_back(correction);
+      correction_log_.emplace_back(updates_made_ + 1, correction);  // updateOf counts it
+    });
 }
 
 MapFileSetup MappingSide::fileSetup(const SystemConfig& config, MapVocabulary orb,
@@ -119,14 +121,33 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
     merged_.erase(merge_log_.front().second);
     merge_log_.pop_front();
   }
+  // A keyframe made before the tracker followed a loop's update is where the tracker's world
+  // was: it moves with the world (in line, or when the tracker keeps up, there is nothing to do).
+  const TrackerReport* report = &job.report;
+  TrackerReport moved;
+  if (const auto move = correctionSince(job.followed_at_keyframe)) {
+    job.keyframe->T_cw = job.keyframe->T_cw * move->inverse();
+    moved = job.report;
+    moveTrackerReport(moved, *move);
+    report = &moved;
+  }
   std::lock_guard<std::mutex> lock(map_.updateMutex());
-  mapper_.replay(job.report, job.keyframe, merged_);
+  mapper_.replay(*report, job.keyframe, merged_);
   if (hooks_.replayed) hooks_.replayed();
   MapUpdate::KeyFrameLinks links{job.keyframe->id, {}};
   const auto& points = job.keyframe->map_points;
   for (size_t i = 0; i < points.size(); ++i)
     if (points[i]) links.points.emplace_back(i, points[i]->id);
   return links;
+}
+
+std::optional<Eigen::Isometry3d> MappingSide::correctionSince(long followed) {
+  while (!correction_log_.empty() && correction_log_.front().first <= followed)
+    correction_log_.pop_front();
+  if (correction_log_.empty()) return std::nullopt;
+  Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
+  for (const auto& [update, correction] : correction_log_) move = correction * move;
+  return move;
 }
 
 KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {

@@ -184,6 +184,7 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
     job.keyframe = job.keyframe->unlinkedCopy();
     job.report = std::exchange(report_, TrackerReport{});
     job.followed_updates = std::exchange(followed_at_last_keyframe_, updates_followed_);
+    job.followed_at_keyframe = updates_followed_;
   }
   job.reference_keyframe = reference_id_.load();
   job.loaded_map = loaded_map_;
@@ -236,7 +237,10 @@ void System::followMapper(const MapUpdate& update) {
   } else {
     copy.apply(update);
   }
-  for (const auto& correction : update.world_corrections) tracker_.applyCorrection(correction);
+  for (const auto& correction : update.world_corrections) {
+    tracker_.applyCorrection(correction);
+    moveTrackerReport(report_, correction);  // its line fits so far, as the mapping side has them
+  }
   ++updates_followed_;
   // What left the tracker's copy is the mapping side's to tell (the update says it).
   copy.takeRemovedPoints();

@@ -62,6 +62,19 @@ def ate_rmse(sequence, trajectory):
     return json.loads(out.stdout)
 
 
+def loop_gap(sequence, trajectory):
+    """How far the trajectory's last pose is from where its first pose and the ground truth put
+    it (m): the drift a loop closure takes out, on a sequence that ends where it began."""
+    with open(trajectory) as f:
+        poses = sum(1 for line in f if line.strip() and not line.startswith("#"))
+    out = subprocess.run([tool("ply_slam_eval"), "rpe", os.path.join(sequence, "groundtruth.txt"),
+                          trajectory, "--delta", str(poses - 1), "--json"], check=True,
+                         capture_output=True, text=True)
+    result = json.loads(out.stdout)
+    assert result["pairs"] == 1, out.stdout
+    return result["trans_max"]
+
+
 def offline_run(sequence, out_dir):
     """ply_slam_tum on the same frames with the same config: the reference the nodes must meet.
     Returns (frames tracked, ATE RMSE)."""

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
 namespace ply_slam {
@@ -28,6 +29,8 @@ struct MapLine {
   // weighted by the inverse variance of its depth.
   void fuse(const Eigen::Vector3d& fit_start, const Eigen::Vector3d& fit_end, double weight_start,
             double weight_end);
+  // Moves the segment rigidly with the world.
+  void moveBy(const Eigen::Isometry3d& move);
 };
 
 }  // namespace ply_slam

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -36,6 +37,8 @@ struct MapPoint {
   int predictLevel(double distance, double log_scale, int num_levels) const;
   // Fuses another depth measurement of the point (world frame) with inverse variance w.
   void fuse(const Eigen::Vector3d& measured, double weight);
+  // Moves the point rigidly with the world: position and viewing direction.
+  void moveBy(const Eigen::Isometry3d& move);
 };
 
 }  // namespace ply_slam

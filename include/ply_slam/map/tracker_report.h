@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <map>
 #include <memory>
 #include <vector>
@@ -51,5 +52,9 @@ struct TrackerReport {
   std::vector<PointLink> point_links;
   std::vector<LineLink> line_links;
 };
+
+// The report moved rigidly with the world (`move`: T_world'_world, a world correction): the line
+// fits, the points and lines the keyframe made and the depths it fused.
+void moveTrackerReport(TrackerReport& report, const Eigen::Isometry3d& move);
 
 }  // namespace ply_slam

@@ -85,8 +85,13 @@ class MappingSide {
  private:
   // loadMap's and takeOver's map, read and checked, into the empty map.
   void adopt(MapFileContents contents);
-  // Replays the job's report; returns the keyframe's point links it made.
+  // Replays the job's report, moved into the world as it is now; returns the keyframe's point
+  // links it made.
   MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
+  // The world corrections of the updates after the first `followed` (those the tracker had not
+  // followed when it made a keyframe), composed; none when there are none. Forgets the older
+  // ones: jobs come in order.
+  std::optional<Eigen::Isometry3d> correctionSince(long followed);
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // What it did, for the copies of the map (`mapped`: none for a global bundle adjustment
   // written back alone).
@@ -107,6 +112,8 @@ class MappingSide {
   long updates_made_ = 0;
   LandmarkCreator::MergedPoints merged_;
   std::deque<std::pair<long, long>> merge_log_;  // (update, loser id), oldest first
+  // The corrections with the update that carries each, oldest first.
+  std::deque<std::pair<long, Eigen::Isometry3d>> correction_log_;
 };
 
 }  // namespace ply_slam
