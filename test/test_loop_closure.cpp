@@ -2,8 +2,8 @@
 // so tracking drifts and only the return to the start can correct it. The same run with and
 // without loop closure, against the exact ground truth; and the run with loop closure again with
 // the tracker in a copy of the map of its own (MappingMode::kSplit), which must repeat it; and
-// with the tracker apart, following the mapping side's updates a keyframe late as tracking_node
-// does when mapping_node lags, which must still close the loop.
+// with the tracker apart, following the mapping side's updates three keyframes late as
+// tracking_node does when mapping_node lags, which must close the loop as well.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -113,13 +113,13 @@ TEST(LoopClosure, HalvesTheDriftOfOneWalkRoundTheRing) {
   const RunOutcome drifting = track(sequence, config, false);
   const RunOutcome closed = track(sequence, config, true);
   const RunOutcome split = track(sequence, config, true, MappingMode::kSplit);
-  const RunOutcome apart = trackApart(sequence, config, 1);
+  const RunOutcome apart = trackApart(sequence, config, 3);
   std::filesystem::remove_all(dir);
   std::cout << "ATE without loop closure " << drifting.ate << " m, with " << closed.ate << " m ("
             << closed.loops_closed << " loops closed)\n";
   std::cout << "keyframes without loop closure: ATE " << drifting.keyframe_ate
             << " m, the last one " << drifting.end_gap
-            << " m from where the first puts it; apart, updates followed a keyframe late: "
+            << " m from where the first puts it; apart, updates followed 3 keyframes late: "
             << apart.loops_closed << " loops closed, ATE " << apart.keyframe_ate << " m, "
             << apart.end_gap << " m\n";
   EXPECT_EQ(drifting.lost, 0u);
@@ -131,13 +131,14 @@ TEST(LoopClosure, HalvesTheDriftOfOneWalkRoundTheRing) {
   // The tracker's copy followed every update of the mapping side, the loop's too.
   EXPECT_EQ(split.loops_closed, closed.loops_closed);
   test::expectSameTrajectory(split.trajectory, closed.trajectory);
-  // Apart, a keyframe late (measured, session 44: keyframe ATE 0.0093 m against 0.0181 m
-  // without loop closure, the ends 0.0049 m apart against 0.073 m). In line the keyframes' ATE
-  // is 0.0068 m: following late costs accuracy (docs/RESULTS.md).
+  // Apart, three keyframes late: the keyframes the tracker made from poses the mapping side had
+  // moved since must move with them (MappingSide::moveSinceTracked). Measured (session 44):
+  // keyframe ATE 0.0070 m (in line 0.0068 m; 0.0450 m when they did not move), the ends 0.0021 m
+  // apart; without loop closure 0.0181 m and 0.073 m.
   EXPECT_EQ(apart.lost, 0u);
   EXPECT_GE(apart.loops_closed, 1);
   EXPECT_LE(apart.end_gap, 0.2 * drifting.end_gap);
-  EXPECT_LE(apart.keyframe_ate, 0.75 * drifting.keyframe_ate);
+  EXPECT_LE(apart.keyframe_ate, 0.5 * drifting.keyframe_ate);
 }
 
 }  // namespace

@@ -19,10 +19,8 @@ MappingSide::MappingSide(const SystemConfig& config, bool follows_reports, bool 
       file_setup_(fileSetup(config, mapper_.orbVocabulary(), mapper_.lbdVocabulary())) {
   // Whoever tracks in a copy moves along when it follows the update that says so.
   if (follows_reports_)
-    mapper_.setCorrectionListener([this](const Eigen::Isometry3d& correction) {
-      corrections_.push_back(correction);
-      correction_log_.emplace_back(updates_made_ + 1, correction);  // updateOf counts it
-    });
+    mapper_.setCorrectionListener(
+        [this](const Eigen::Isometry3d& correction) { corrections_.push_back(correction); });
 }
 
 MapFileSetup MappingSide::fileSetup(const SystemConfig& config, MapVocabulary orb,
@@ -121,11 +119,15 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
     merged_.erase(merge_log_.front().second);
     merge_log_.pop_front();
   }
-  // A keyframe made before the tracker followed a loop's update is where the tracker's world
-  // was: it moves with the world (in line, or when the tracker keeps up, there is nothing to do).
+  // A keyframe made before the tracker followed the updates that moved the keyframe it was made
+  // from (local BA, a loop's correction) is where the tracker had that one: it moves with it. In
+  // line, or when the tracker keeps up, nothing moved.
   const TrackerReport* report = &job.report;
   TrackerReport moved;
-  if (const auto move = correctionSince(job.followed_at_keyframe)) {
+  const std::optional<Eigen::Isometry3d> move = moveSinceTracked(job.followed_at_keyframe);
+  told_poses_[job.keyframe->id] = job.keyframe->T_cw;  // the tracker's, moved or not
+  last_job_keyframe_ = job.keyframe->id;
+  if (move) {
     job.keyframe->T_cw = job.keyframe->T_cw * move->inverse();
     moved = job.report;
     moveTrackerReport(moved, *move);
@@ -141,13 +143,24 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   return links;
 }
 
-std::optional<Eigen::Isometry3d> MappingSide::correctionSince(long followed) {
-  while (!correction_log_.empty() && correction_log_.front().first <= followed)
-    correction_log_.pop_front();
-  if (correction_log_.empty()) return std::nullopt;
-  Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
-  for (const auto& [update, correction] : correction_log_) move = correction * move;
-  return move;
+std::optional<Eigen::Isometry3d> MappingSide::moveSinceTracked(long followed) {
+  while (!replaced_poses_.empty() && std::get<0>(replaced_poses_.front()) <= followed)
+    replaced_poses_.pop_front();
+  const auto now = told_poses_.find(last_job_keyframe_);
+  if (now == told_poses_.end()) return std::nullopt;        // none yet, or culled
+  for (const auto& [update, id, before] : replaced_poses_)  // the oldest the tracker has not seen
+    if (id == last_job_keyframe_) return now->second.inverse() * before;
+  return std::nullopt;
+}
+
+void MappingSide::rememberTold(const MapUpdate& update) {
+  for (const auto& kf : update.keyframes) {
+    const auto [told, added] = told_poses_.try_emplace(kf.id, kf.T_cw);
+    if (added || told->second.matrix() == kf.T_cw.matrix()) continue;
+    replaced_poses_.emplace_back(updates_made_, kf.id, told->second);
+    told->second = kf.T_cw;
+  }
+  for (long id : update.erased_keyframes) told_poses_.erase(id);
 }
 
 KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {
@@ -178,6 +191,7 @@ MapUpdate MappingSide::updateOf(const std::optional<KeyFrameInsertionStats>& map
   update.journal = std::move(journal);
   update.world_corrections = std::exchange(corrections_, {});
   ++updates_made_;
+  rememberTold(update);
   for (const auto& e : update.journal.entries)
     if (e.change == MapJournal::Change::kReplace) {
       merged_[e.point] = e.winner;

@@ -624,8 +624,11 @@ TEST(SplitMessages, ATrackerThatStartsAnewTakesOverTheMappingSidesMap) {
   EXPECT_EQ(first_tracked, kRestart);
   EXPECT_GE(mapped_after, 3u);
   // Ids of points the first tracker made and the mapping side erased are not given again.
-  for (const auto& p : mapping.map().mapPoints())
-    if (p->first_keyframe_id >= ids_before.keyframe) EXPECT_GE(p->id, ids_before.point);
+  for (const auto& p : mapping.map().mapPoints()) {
+    if (p->first_keyframe_id >= ids_before.keyframe) {
+      EXPECT_GE(p->id, ids_before.point);
+    }
+  }
   test::expectSameMap(tracker->trackerMap(), mapping.map(), "the new tracker's copy");
 }
 

@@ -3,8 +3,10 @@
 #include <Eigen/Geometry>
 #include <deque>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -85,13 +87,15 @@ class MappingSide {
  private:
   // loadMap's and takeOver's map, read and checked, into the empty map.
   void adopt(MapFileContents contents);
-  // Replays the job's report, moved into the world as it is now; returns the keyframe's point
-  // links it made.
+  // Replays the job's report, moved to where the map has the keyframe it was made from; returns
+  // the keyframe's point links it made.
   MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
-  // The world corrections of the updates after the first `followed` (those the tracker had not
-  // followed when it made a keyframe), composed; none when there are none. Forgets the older
-  // ones: jobs come in order.
-  std::optional<Eigen::Isometry3d> correctionSince(long followed);
+  // How the last job's keyframe moved (T_wc now * T_wc then^-1) since the pose the tracker had
+  // when it had followed the first `followed` updates; none when it has not moved since. The
+  // tracker made the next keyframe from that pose. Forgets older poses: jobs come in order.
+  std::optional<Eigen::Isometry3d> moveSinceTracked(long followed);
+  // Keeps the poses `update` tells the tracker, and those they replace.
+  void rememberTold(const MapUpdate& update);
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // What it did, for the copies of the map (`mapped`: none for a global bundle adjustment
   // written back alone).
@@ -107,13 +111,17 @@ class MappingSide {
   Hooks hooks_;
   // How the Mapper moved the world while mapping a keyframe, in order, for its update.
   std::vector<Eigen::Isometry3d> corrections_;
+  // The keyframes' poses (T_cw) as the tracker has them once it follows every update made, the
+  // poses each update replaced (update, keyframe, T_cw before) until a job says the tracker
+  // followed it, and the last job's keyframe.
+  std::map<long, Eigen::Isometry3d> told_poses_;
+  std::deque<std::tuple<long, long, Eigen::Isometry3d>> replaced_poses_;
+  long last_job_keyframe_ = -1;
   // The updates made, and the points merged away that reports may still name, with the update
   // that merged each (kept until a job says the tracker's copy followed it).
   long updates_made_ = 0;
   LandmarkCreator::MergedPoints merged_;
   std::deque<std::pair<long, long>> merge_log_;  // (update, loser id), oldest first
-  // The corrections with the update that carries each, oldest first.
-  std::deque<std::pair<long, Eigen::Isometry3d>> correction_log_;
 };
 
 }  // namespace ply_slam
