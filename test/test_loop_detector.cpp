@@ -107,6 +107,19 @@ TEST_F(LoopDetectorTest, ScoresTheRevisitedWindowHighest) {
   EXPECT_GT(best->raw.full / s.reference.full, 1.0);
 }
 
+// The reference is the earlier covisible keyframe most like the query, not the one sharing the
+// most landmarks: here keyframe 14 (another window) is said to share the most.
+TEST_F(LoopDetectorTest, TheReferenceIsTheMostSimilarEarlierCovisibleKeyFrame) {
+  LoopDetector detector = filledDetector();
+  const VariantScores neighbour = detector.score(17).reference;
+  detector.setCovisibility(17, {{14, 10 * kWindow}, {16, kWindow - kStride}, {18, 1}});
+  const LoopQueryScores s = detector.score(17);
+  ASSERT_TRUE(s.reference_id.has_value());
+  EXPECT_EQ(*s.reference_id, 16);
+  EXPECT_EQ(s.reference.full, neighbour.full);
+  EXPECT_EQ(s.reference.points, neighbour.points);
+}
+
 TEST_F(LoopDetectorTest, QueriesSeeOnlyKeyFramesOldEnough) {
   const LoopDetector detector = filledDetector();
   // Keyframe 2 (window 200) shares landmarks with 16 (window 200) and 17 (300): both later.

@@ -86,18 +86,29 @@ VariantScores LoopDetector::pairScores(const Entry& query, const Entry& other, d
   return {s_p, s_l, score.point_line, score.final_score};
 }
 
-// The earlier keyframe sharing the most landmarks with the query: a view of the same place a
-// moment ago, whose score says how similar a true revisit can look from here.
-std::optional<long> LoopDetector::bestEarlierCovisible(const Entry& query) const {
-  std::optional<long> best;
-  int most = 0;
+// Views of the same place a moment ago: the most similar says how similar a true revisit can
+// look from here. (The one sharing the most landmarks, used before, can be a view from further
+// off whose lower score lifts every candidate of this query above other queries' true ones.)
+void LoopDetector::scoreReference(const Entry& query, LoopQueryScores& out) const {
+  // Scored as the database scores the candidates: the query's bags normalised as query()
+  // normalises them, against the stored (unit-norm) bags.
+  const KeyFrameWords* words = database_.find(query.keyframe.id);
+  BowVector points = words->points, lines = words->lines;
+  normaliseL1(points);
+  normaliseL1(lines);
   for (const auto& [id, shared] : query.keyframe.covisibility) {
     auto it = keyframes_.find(id);
-    if (it == keyframes_.end() || it->second.order >= query.order || shared <= most) continue;
-    best = id;
-    most = shared;
+    if (it == keyframes_.end() || it->second.order >= query.order) continue;
+    const KeyFrameWords* other = database_.find(id);
+    const VariantScores s = pairScores(query, it->second, unitBowScore(points, other->points),
+                                       unitBowScore(lines, other->lines), nullptr);
+    if (!out.reference_id || s.full > out.reference.full) out.reference_id = id;
+    VariantScores& r = out.reference;
+    r.points = std::max(r.points, s.points);
+    r.lines = std::max(r.lines, s.lines);
+    r.point_line = std::max(r.point_line, s.point_line);
+    r.full = std::max(r.full, s.full);
   }
-  return best;
 }
 
 LoopQueryScores LoopDetector::score(long query_id) const {
@@ -105,17 +116,7 @@ LoopQueryScores LoopDetector::score(long query_id) const {
   const KeyFrameWords* words = database_.find(query_id);
   LoopQueryScores out;
   out.query_id = query_id;
-  out.reference_id = bestEarlierCovisible(query);
-  if (out.reference_id) {
-    // Scored as the database scores the candidates: the query's bags normalised as query()
-    // normalises them, against the stored (unit-norm) bags.
-    const KeyFrameWords* ref = database_.find(*out.reference_id);
-    BowVector points = words->points, lines = words->lines;
-    normaliseL1(points);
-    normaliseL1(lines);
-    out.reference = pairScores(query, entry(*out.reference_id), unitBowScore(points, ref->points),
-                               unitBowScore(lines, ref->lines), nullptr);
-  }
+  scoreReference(query, out);
   // Later keyframes, the query itself, recent ones and covisible ones are never candidates.
   const auto exclude = [&](long id) {
     const Entry& e = entry(id);

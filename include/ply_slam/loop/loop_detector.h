@@ -50,10 +50,12 @@ struct ScoredCandidate {
 };
 
 // Every candidate of one query with raw scores, and the reference the scores are divided by:
-// the same scores against the query's best covisible neighbour (most shared landmarks).
+// the same scores against the query's best covisible neighbour, the earlier covisible keyframe
+// that scores highest (each variant's own best).
 struct LoopQueryScores {
   long query_id = 0;
-  std::optional<long> reference_id;  // none: no covisible keyframe, the query cannot be judged
+  std::optional<long> reference_id;  // the best by S_fin; none: no earlier covisible keyframe,
+                                     // the query cannot be judged
   VariantScores reference;
   // Keyframes sharing a word with the query, added before it, at least
   // options.min_candidate_age_s older and not covisible with it.
@@ -121,7 +123,8 @@ class LoopDetector {
   void dropWeakLinks(std::map<long, int>& covisibility) const;
   VariantScores pairScores(const Entry& query, const Entry& other, double s_p, double s_l,
                            int* instance_matches) const;
-  std::optional<long> bestEarlierCovisible(const Entry& query) const;
+  // reference_id and reference of `out`: the query against its earlier covisible keyframes.
+  void scoreReference(const Entry& query, LoopQueryScores& out) const;
   LoopQuery selectorQuery(const LoopQueryScores& scores) const;
   std::vector<PutativeMatch> putativeMatches(const Entry& query, const Entry& candidate) const;
 
