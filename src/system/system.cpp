@@ -239,7 +239,7 @@ void System::followMapper(const MapUpdate& update) {
   }
   for (const auto& correction : update.world_corrections) {
     tracker_.applyCorrection(correction);
-    moveTrackerReport(report_, correction);  // its line fits so far, as the mapping side has them
+    moveTrackerReport(report_, correction);  // its line fits so far: into the world it goes on in
   }
   ++updates_followed_;
   // What left the tracker's copy is the mapping side's to tell (the update says it).

@@ -26,9 +26,9 @@ struct MappingJob {
   // Split modes: how many updates the tracker's copy had followed when the report began: the
   // merges of later ones it may not know (LandmarkCreator::replay's `merged`).
   long followed_updates = 0;
-  // Split modes: how many when it made the keyframe: the world the keyframe's pose and the report
-  // are in. The mapping side moves them by the world corrections of the updates after it (a loop
-  // closed while the keyframe was on its way).
+  // Split modes: how many when it made the keyframe: the state of the map its pose and the report
+  // were made in. The mapping side moves them as the keyframe they were made from moved in the
+  // updates after it (MappingSide::moveSinceTracked: a local BA, a loop closed meanwhile).
   long followed_at_keyframe = 0;
   // The tracker's reference keyframe when it handed the job over: culling leaves it (the
   // mapping side of another process has no other way to know it).
