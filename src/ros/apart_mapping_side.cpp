@@ -84,10 +84,10 @@ void ApartMappingSide::onMappingJob(const ply_slam::MappingJobMsgConstPtr& msg) 
 }
 
 void ApartMappingSide::adoptTracker(const PinholeCamera& camera, const std::string& yaml) {
-  if (yaml == tracker_yaml_ && sameCamera(camera, config_.camera)) return;
+  const bool same_camera = sameCamera(camera, config_.camera);
+  if (yaml == tracker_yaml_ && same_camera) return;
   SystemConfig tracker = loadConfigFromString(yaml, "of the tracker (in its mapping job)");
   useCamera(tracker, camera);
-  const bool same_camera = sameCamera(camera, config_.camera);
   const std::vector<std::string> differ = mappingSettingsThatDiffer(config_, tracker);
   if (mapped_any_ && !same_camera)
     throw std::invalid_argument("the tracker's camera (" + intrinsicsText(camera) +

@@ -279,9 +279,8 @@ MappingJob fromMsg(const MappingJobMsg& m, const JobReceiver& receiver) {
   if (m.followed_at_keyframe < m.followed_updates)
     throw std::invalid_argument(
         "the job says its tracker had followed " + std::to_string(m.followed_updates) +
-        " updates when the report began"
-        " but " +
-        std::to_string(m.followed_at_keyframe) + " when it made the keyframe");
+        " updates when the report began but " + std::to_string(m.followed_at_keyframe) +
+        " when it made the keyframe");
   job.reference_keyframe = m.reference_keyframe;
   job.loaded_map = m.loaded_map;
   job.images.stamp = job.keyframe->stamp;

@@ -125,8 +125,8 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   const TrackerReport* report = &job.report;
   TrackerReport moved;
   const std::optional<Eigen::Isometry3d> move = moveSinceTracked(job.followed_at_keyframe);
-  told_poses_[job.keyframe->id] = job.keyframe->T_cw;  // the tracker's, moved or not
   last_job_keyframe_ = job.keyframe->id;
+  last_job_poses_ = {{job.followed_at_keyframe, job.keyframe->T_cw}};  // the tracker's, unmoved
   if (move) {
     job.keyframe->T_cw = job.keyframe->T_cw * move->inverse();
     moved = job.report;
@@ -143,24 +143,23 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   return links;
 }
 
-std::optional<Eigen::Isometry3d> MappingSide::moveSinceTracked(long followed) {
-  while (!replaced_poses_.empty() && std::get<0>(replaced_poses_.front()) <= followed)
-    replaced_poses_.pop_front();
-  const auto now = told_poses_.find(last_job_keyframe_);
-  if (now == told_poses_.end()) return std::nullopt;        // none yet, or culled
-  for (const auto& [update, id, before] : replaced_poses_)  // the oldest the tracker has not seen
-    if (id == last_job_keyframe_) return now->second.inverse() * before;
-  return std::nullopt;
+std::optional<Eigen::Isometry3d> MappingSide::moveSinceTracked(long followed) const {
+  if (last_job_poses_.empty()) return std::nullopt;
+  // The newest pose the tracker had followed: the first is the one it made the keyframe at.
+  auto then = last_job_poses_.begin();
+  for (auto it = then; it != last_job_poses_.end() && it->first <= followed; ++it) then = it;
+  const Eigen::Isometry3d& now = last_job_poses_.back().second;
+  if (then->second.matrix() == now.matrix()) return std::nullopt;
+  return now.inverse() * then->second;
 }
 
 void MappingSide::rememberTold(const MapUpdate& update) {
-  for (const auto& kf : update.keyframes) {
-    const auto [told, added] = told_poses_.try_emplace(kf.id, kf.T_cw);
-    if (added || told->second.matrix() == kf.T_cw.matrix()) continue;
-    replaced_poses_.emplace_back(updates_made_, kf.id, told->second);
-    told->second = kf.T_cw;
-  }
-  for (long id : update.erased_keyframes) told_poses_.erase(id);
+  if (last_job_poses_.empty()) return;
+  for (long id : update.erased_keyframes)
+    if (id == last_job_keyframe_) last_job_poses_.clear();
+  for (const auto& kf : update.keyframes)
+    if (kf.id == last_job_keyframe_ && !last_job_poses_.empty())
+      last_job_poses_.emplace_back(updates_made_, kf.T_cw);
 }
 
 KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {

@@ -3,10 +3,8 @@
 #include <Eigen/Geometry>
 #include <deque>
 #include <functional>
-#include <map>
 #include <optional>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -91,10 +89,10 @@ class MappingSide {
   // the keyframe's point links it made.
   MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
   // How the last job's keyframe moved (T_wc now * T_wc then^-1) since the pose the tracker had
-  // when it had followed the first `followed` updates; none when it has not moved since. The
-  // tracker made the next keyframe from that pose. Forgets older poses: jobs come in order.
-  std::optional<Eigen::Isometry3d> moveSinceTracked(long followed);
-  // Keeps the poses `update` tells the tracker, and those they replace.
+  // when it had followed the first `followed` updates; none when it has not moved since (or left
+  // the map). The tracker made the next keyframe from that pose.
+  std::optional<Eigen::Isometry3d> moveSinceTracked(long followed) const;
+  // Keeps the last job's keyframe's pose when `update` tells the tracker a new one.
   void rememberTold(const MapUpdate& update);
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // What it did, for the copies of the map (`mapped`: none for a global bundle adjustment
@@ -111,12 +109,10 @@ class MappingSide {
   Hooks hooks_;
   // How the Mapper moved the world while mapping a keyframe, in order, for its update.
   std::vector<Eigen::Isometry3d> corrections_;
-  // The keyframes' poses (T_cw) as the tracker has them once it follows every update made, the
-  // poses each update replaced (update, keyframe, T_cw before) until a job says the tracker
-  // followed it, and the last job's keyframe.
-  std::map<long, Eigen::Isometry3d> told_poses_;
-  std::deque<std::tuple<long, long, Eigen::Isometry3d>> replaced_poses_;
+  // The last job's keyframe and the poses (T_cw) the tracker has had for it: the one it made it
+  // at, then each an update told it, with the updates made by then (empty: none, or culled).
   long last_job_keyframe_ = -1;
+  std::vector<std::pair<long, Eigen::Isometry3d>> last_job_poses_;
   // The updates made, and the points merged away that reports may still name, with the update
   // that merged each (kept until a job says the tracker's copy followed it).
   long updates_made_ = 0;
