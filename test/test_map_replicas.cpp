@@ -6,6 +6,7 @@
 // culling, loop correction).
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -23,6 +24,7 @@
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
+#include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/system.h"
 #include "ply_slam/tracking/tracker.h"
 #include "pose_test_helpers.h"
@@ -182,6 +184,64 @@ TEST(MapReplicas, ATrackerOnItsOwnThreadFollowsTheMapperOnAnother) {
             << " links, " << other_links << " of them not in the copy or otherwise there\n";
   EXPECT_GT(links, 5000u);
   EXPECT_EQ(other_links, 0u);
+}
+
+// A tracker apart that follows an update late has made keyframes (and landmarks with them) on
+// top of the keyframe the update moved: they move as that one moved, rigidly, and nothing of
+// what the update leaves alone moves.
+TEST(MapReplicas, KeyFramesTheMappingSideHasNotSeenMoveWithTheOneBefore) {
+  const TempDir dir;
+  SynthOptions options;
+  options.scene = SceneKind::kOffice;
+  options.frames = 150;
+  options.noise = true;  // local BA then moves the keyframes
+  writeSyntheticSequence(SyntheticSequence(options), dir.path().string());
+  const TumSequence sequence(dir.path().string());
+  const SystemConfig config = loadConfig(dir.file("camera.yaml"));
+  System tracker(config, MappingMode::kApart);
+  MappingSide mapping(config, true, true);
+  std::deque<std::shared_ptr<const MapUpdate>> updates;
+  tracker.setJobSink(
+      [&](MappingJob job) { updates.push_back(mapping.mapKeyFrame(job).map_update); });
+  const Map& copy = tracker.trackerMap();
+  size_t checked = 0;
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    ASSERT_EQ(tracker.process(sequence.load(i, config.camera.depth_factor)).tracking.state,
+              TrackingState::kOk);
+    if (updates.size() <= 3) continue;  // followed three keyframes late
+    const std::shared_ptr<const MapUpdate> followed = updates.front();
+    updates.pop_front();
+    const MapUpdate& update = *followed;
+    long newest = -1;
+    for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+    std::map<long, Eigen::Isometry3d> before;
+    for (const auto& kf : copy.keyFrames()) before[kf->id] = kf->T_wc();
+    std::map<long, Eigen::Vector3d> points_before;
+    for (const auto& p : copy.mapPoints())
+      if (p->first_keyframe_id > newest) points_before[p->id] = p->position;
+    tracker.followMapUpdate(update);
+    if (newest < 0) continue;
+    const auto after = byId(copy.keyFrames());
+    const Eigen::Isometry3d moved = after.at(newest)->T_wc() * before.at(newest).inverse();
+    std::set<long> in_update;
+    for (const auto& pose : update.keyframes) in_update.insert(pose.id);
+    for (const auto& [id, T_wc] : before) {
+      const auto kf = after.find(id);
+      if (kf == after.end() || in_update.count(id)) continue;
+      const Eigen::Isometry3d expected = id > newest ? moved * T_wc : T_wc;
+      EXPECT_TRUE(kf->second->T_wc().isApprox(expected, 1e-9))
+          << "keyframe " << id << " after the update of keyframe " << newest;
+      checked += id > newest;
+    }
+    for (const auto& p : copy.mapPoints()) {
+      const auto was = points_before.find(p->id);
+      if (was == points_before.end()) continue;
+      EXPECT_LT((p->position - moved * was->second).norm(), 1e-9) << "point " << p->id;
+    }
+    if (HasFailure()) return;
+  }
+  std::cout << checked << " keyframes carried along\n";
+  EXPECT_GE(checked, 20u);
 }
 
 // Loop corrections (rigid moves, fusion across the loop, the pose graph, the global BA written

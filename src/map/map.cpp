@@ -361,6 +361,14 @@ std::vector<std::shared_ptr<KeyFrame>> Map::keyFrames() const {
   return keyframes_;
 }
 
+std::shared_ptr<KeyFrame> Map::keyFrame(long id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  // From the newest: the one asked for is mostly among the last.
+  const auto found = std::find_if(keyframes_.rbegin(), keyframes_.rend(),
+                                  [id](const auto& kf) { return kf->id == id; });
+  return found != keyframes_.rend() ? *found : nullptr;
+}
+
 std::vector<std::shared_ptr<MapPoint>> Map::mapPoints() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return points_;

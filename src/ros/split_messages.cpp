@@ -257,7 +257,8 @@ MappingJobMsg toMsg(const MappingJob& job, const std::string& world_frame) {
   m.line_slots = static_cast<uint32_t>(kf.map_lines.size());
   m.report = toMsg(job.report);
   m.followed_updates = static_cast<uint64_t>(job.followed_updates);
-  m.followed_at_keyframe = static_cast<uint64_t>(job.followed_at_keyframe);
+  m.made_after = job.made_after;
+  m.made_after_T_cw = toRigidMsg(job.made_after_T_cw);
   m.reference_keyframe = job.reference_keyframe;
   m.loaded_map = job.loaded_map;
   m.depth_stamp = job.images.depth_stamp;
@@ -275,12 +276,11 @@ MappingJob fromMsg(const MappingJobMsg& m, const JobReceiver& receiver) {
   job.report = fromMsg(m.report);
   checkLinks(job.report, *job.keyframe);
   job.followed_updates = static_cast<long>(m.followed_updates);
-  job.followed_at_keyframe = static_cast<long>(m.followed_at_keyframe);
-  if (m.followed_at_keyframe < m.followed_updates)
-    throw std::invalid_argument(
-        "the job says its tracker had followed " + std::to_string(m.followed_updates) +
-        " updates when the report began but " + std::to_string(m.followed_at_keyframe) +
-        " when it made the keyframe");
+  if (m.made_after < -1 || m.made_after >= m.id)
+    throw std::invalid_argument("the job says keyframe " + std::to_string(m.id) +
+                                " was made after keyframe " + std::to_string(m.made_after));
+  job.made_after = m.made_after;
+  job.made_after_T_cw = fromRigidMsg(m.made_after_T_cw);
   job.reference_keyframe = m.reference_keyframe;
   job.loaded_map = m.loaded_map;
   job.images.stamp = job.keyframe->stamp;

@@ -124,9 +124,7 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   // line, or when the tracker keeps up, nothing moved.
   const TrackerReport* report = &job.report;
   TrackerReport moved;
-  const std::optional<Eigen::Isometry3d> move = moveSinceTracked(job.followed_at_keyframe);
-  last_job_keyframe_ = job.keyframe->id;
-  last_job_poses_ = {{job.followed_at_keyframe, job.keyframe->T_cw}};  // the tracker's, unmoved
+  const std::optional<Eigen::Isometry3d> move = moveSinceTracked(job);
   if (move) {
     job.keyframe->T_cw = job.keyframe->T_cw * move->inverse();
     moved = job.report;
@@ -143,23 +141,12 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   return links;
 }
 
-std::optional<Eigen::Isometry3d> MappingSide::moveSinceTracked(long followed) const {
-  if (last_job_poses_.empty()) return std::nullopt;
-  // The newest pose the tracker had followed: the first is the one it made the keyframe at.
-  auto then = last_job_poses_.begin();
-  for (auto it = then; it != last_job_poses_.end() && it->first <= followed; ++it) then = it;
-  const Eigen::Isometry3d& now = last_job_poses_.back().second;
-  if (then->second.matrix() == now.matrix()) return std::nullopt;
-  return now.inverse() * then->second;
-}
-
-void MappingSide::rememberTold(const MapUpdate& update) {
-  if (last_job_poses_.empty()) return;
-  for (long id : update.erased_keyframes)
-    if (id == last_job_keyframe_) last_job_poses_.clear();
-  for (const auto& kf : update.keyframes)
-    if (kf.id == last_job_keyframe_ && !last_job_poses_.empty())
-      last_job_poses_.emplace_back(updates_made_, kf.T_cw);
+std::optional<Eigen::Isometry3d> MappingSide::moveSinceTracked(const MappingJob& job) const {
+  if (job.made_after < 0) return std::nullopt;
+  const std::shared_ptr<KeyFrame> before = map_.keyFrame(job.made_after);
+  if (!before || before->bad || before->T_cw.matrix() == job.made_after_T_cw.matrix())
+    return std::nullopt;
+  return before->T_wc() * job.made_after_T_cw;
 }
 
 KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, MappedKeyFrame& out) {
@@ -190,7 +177,6 @@ MapUpdate MappingSide::updateOf(const std::optional<KeyFrameInsertionStats>& map
   update.journal = std::move(journal);
   update.world_corrections = std::exchange(corrections_, {});
   ++updates_made_;
-  rememberTold(update);
   for (const auto& e : update.journal.entries)
     if (e.change == MapJournal::Change::kReplace) {
       merged_[e.point] = e.winner;

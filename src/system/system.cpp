@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <set>
@@ -184,7 +185,11 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
     job.keyframe = job.keyframe->unlinkedCopy();
     job.report = std::exchange(report_, TrackerReport{});
     job.followed_updates = std::exchange(followed_at_last_keyframe_, updates_followed_);
-    job.followed_at_keyframe = updates_followed_;
+    if (last_job_keyframe_ && !last_job_keyframe_->bad) {
+      job.made_after = last_job_keyframe_->id;
+      job.made_after_T_cw = last_job_keyframe_->T_cw;
+    }
+    last_job_keyframe_ = result.tracking.new_keyframe;
   }
   job.reference_keyframe = reference_id_.load();
   job.loaded_map = loaded_map_;
@@ -231,39 +236,52 @@ std::vector<long> System::placeCandidates(const cv::Mat& orb_descriptors) const 
 }
 
 void System::followMapper(const MapUpdate& update) {
-  Map& copy = *tracking_map_;
-  if (update.whole_map) {
-    followWholeMap(update);
-  } else {
-    copy.apply(update);
-  }
+  const std::shared_ptr<KeyFrame> reference = tracker_.referenceKeyFrame();
+  const Eigen::Isometry3d reference_before =
+      reference ? reference->T_wc() : Eigen::Isometry3d::Identity();
+  const bool reference_carried = followCarryingNewer(update);
   for (const auto& correction : update.world_corrections) {
     tracker_.applyCorrection(correction);
     moveTrackerReport(report_, correction);  // its line fits so far: into the world it goes on in
   }
+  // The tracker's last frame and its report so far hang from its reference keyframe: when that
+  // one moved as a keyframe of its own the mapping side has not seen yet, they move with it
+  // (a loop's or a global BA's move came as world corrections above).
+  if (reference_carried && update.world_corrections.empty()) {
+    const Eigen::Isometry3d moved = reference->T_wc() * reference_before.inverse();
+    tracker_.applyCorrection(moved);
+    moveTrackerReport(report_, moved);
+  }
   ++updates_followed_;
   // What left the tracker's copy is the mapping side's to tell (the update says it).
-  copy.takeRemovedPoints();
-  copy.takeRemovedLines();
+  tracking_map_->takeRemovedPoints();
+  tracking_map_->takeRemovedLines();
 }
 
-void System::followWholeMap(const MapUpdate& update) {
+bool System::followCarryingNewer(const MapUpdate& update) {
   Map& copy = *tracking_map_;
   // Alive through the update, which may erase some (their poses are read after).
   const std::vector<std::shared_ptr<KeyFrame>> keyframes = copy.keyFrames();
   std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> before;
   for (const auto& kf : keyframes) before.emplace_back(kf.get(), kf->T_wc());
   copy.apply(update);
-  std::set<long> solved_ids;
-  for (const auto& pose : update.keyframes) solved_ids.insert(pose.id);
-  std::set<const KeyFrame*> solved;
+  // The update accounts for every keyframe up to its newest; the tracker made the later ones.
+  // One that moved no keyframe moves none of them either.
+  long newest = update.keyframes.empty() ? std::numeric_limits<long>::max() : -1;
+  for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+  std::set<const KeyFrame*> seen;
   std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> kept;
+  bool reference_carried = false;
   for (const auto& [kf, T_wc] : before) {
     if (kf->bad) continue;
-    if (solved_ids.count(kf->id)) solved.insert(kf);
+    if (kf->id <= newest)
+      seen.insert(kf);
+    else
+      reference_carried |= kf == tracker_.referenceKeyFrame().get();
     kept.emplace_back(kf, T_wc);
   }
-  carryAlong(copy, solved, kept);
+  carryAlong(copy, seen, kept);
+  return reference_carried;
 }
 
 void System::rememberTracked(const FrameResult& result) {

@@ -159,7 +159,8 @@ class JobTest : public ::testing::Test {
     job_.images.depth_stamp = images_.stamp + 0.0123;
     job_.report = someReport(kf->id);
     job_.followed_updates = 17;
-    job_.followed_at_keyframe = 19;
+    job_.made_after = kf->id - 2;
+    job_.made_after_T_cw = somePose(0.2);
     job_.reference_keyframe = 5;
     job_.loaded_map = 0xfedcba9876543210ULL;
     std::vector<Instance> instances(2);
@@ -216,7 +217,8 @@ TEST_F(JobTest, TravelsBitForBit) {
   EXPECT_EQ(a.map_lines.size(), 3u);
   expectSameReport(back.report, job_.report);
   EXPECT_EQ(back.followed_updates, 17);
-  EXPECT_EQ(back.followed_at_keyframe, 19);
+  EXPECT_EQ(back.made_after, job_.made_after);
+  EXPECT_TRUE(back.made_after_T_cw.isApprox(job_.made_after_T_cw, 1e-12));
   EXPECT_EQ(back.reference_keyframe, 5);
   EXPECT_EQ(back.loaded_map, 0xfedcba9876543210ULL);
   EXPECT_EQ(back.images.stamp, job_.images.stamp);
@@ -261,8 +263,12 @@ TEST_F(JobTest, InconsistentJobsAreRejected) {
   msg.features[0].u = std::numeric_limits<double>::infinity();
   expectRejectedNaming([&] { fromMsg(msg, here); }, "not finite");
   msg = good;
-  msg.followed_at_keyframe = 16;  // fewer than when the report began
-  expectRejectedNaming([&] { fromMsg(msg, here); }, "16 when it made the keyframe");
+  msg.made_after = msg.id;  // not one made before it
+  expectRejectedNaming([&] { fromMsg(msg, here); },
+                       "made after keyframe " + std::to_string(msg.id));
+  msg = good;
+  msg.made_after_T_cw.matrix[0] = 2.0;
+  expectRejectedNaming([&] { fromMsg(msg, here); }, "rotation");
   msg = good;
   msg.T_cw.matrix[5] = 0.0;
   expectRejectedNaming([&] { fromMsg(msg, here); }, "rotation");

@@ -89,6 +89,8 @@ class Map {
   void continueIdsFrom(const Ids& ids);
 
   std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;
+  // The keyframe `id`; null when the map has none (never had it, or erased it).
+  std::shared_ptr<KeyFrame> keyFrame(long id) const;
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;
   size_t numKeyFrames() const;
   size_t numMapPoints() const;

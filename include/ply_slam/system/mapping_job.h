@@ -26,10 +26,12 @@ struct MappingJob {
   // Split modes: how many updates the tracker's copy had followed when the report began: the
   // merges of later ones it may not know (LandmarkCreator::replay's `merged`).
   long followed_updates = 0;
-  // Split modes: how many when it made the keyframe: the state of the map its pose and the report
-  // were made in. The mapping side moves them as the keyframe they were made from moved in the
-  // updates after it (MappingSide::moveSinceTracked: a local BA, a loop closed meanwhile).
-  long followed_at_keyframe = 0;
+  // Split modes: the keyframe the tracker handed over before this one (-1: none, or erased) and
+  // its pose (T_cw) in the tracker's copy when it made this one: the pose and the report are
+  // relative to it. The mapping side moves them as it has that keyframe now (a local BA or a
+  // loop the tracker had not followed yet; MappingSide::moveSinceTracked).
+  long made_after = -1;
+  Eigen::Isometry3d made_after_T_cw = Eigen::Isometry3d::Identity();
   // The tracker's reference keyframe when it handed the job over: culling leaves it (the
   // mapping side of another process has no other way to know it).
   long reference_keyframe = -1;

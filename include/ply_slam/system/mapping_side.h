@@ -88,12 +88,9 @@ class MappingSide {
   // Replays the job's report, moved to where the map has the keyframe it was made from; returns
   // the keyframe's point links it made.
   MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
-  // How the last job's keyframe moved (T_wc now * T_wc then^-1) since the pose the tracker had
-  // when it had followed the first `followed` updates; none when it has not moved since (or left
-  // the map). The tracker made the next keyframe from that pose.
-  std::optional<Eigen::Isometry3d> moveSinceTracked(long followed) const;
-  // Keeps the last job's keyframe's pose when `update` tells the tracker a new one.
-  void rememberTold(const MapUpdate& update);
+  // How the keyframe the tracker made the job's after moved since the tracker had it (T_wc now *
+  // T_wc then^-1); none when it has not moved (or left the map).
+  std::optional<Eigen::Isometry3d> moveSinceTracked(const MappingJob& job) const;
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // What it did, for the copies of the map (`mapped`: none for a global bundle adjustment
   // written back alone).
@@ -109,10 +106,6 @@ class MappingSide {
   Hooks hooks_;
   // How the Mapper moved the world while mapping a keyframe, in order, for its update.
   std::vector<Eigen::Isometry3d> corrections_;
-  // The last job's keyframe and the poses (T_cw) the tracker has had for it: the one it made it
-  // at, then each an update told it, with the updates made by then (empty: none, or culled).
-  long last_job_keyframe_ = -1;
-  std::vector<std::pair<long, Eigen::Isometry3d>> last_job_poses_;
   // The updates made, and the points merged away that reports may still name, with the update
   // that merged each (kept until a job says the tracker's copy followed it).
   long updates_made_ = 0;

@@ -215,9 +215,10 @@ class System {
   void adoptTrackerCopy(MapFileContents copy);
   // After a map was taken: tracking starts lost, frame ids go on after the map's.
   void startInMap(bool localisation_only);
-  // followMapper's whole-map update (after a loop or a global BA): keyframes the mapping side
-  // has not seen move as the one before them moved (carryAlong).
-  void followWholeMap(const MapUpdate& update);
+  // followMapper's update into the copy: the keyframes the tracker made after the update's newest
+  // (the mapping side has not seen them yet) move as the one before them moved (carryAlong), and
+  // the landmarks they made with them. Returns whether the tracker's reference keyframe moved so.
+  bool followCarryingNewer(const MapUpdate& update);
   // The mapping thread's results, followed by the tracker's copy (split modes).
   std::vector<MappedKeyFrame> followed(std::vector<MappedKeyFrame> mapped);
   // The map the tracker tracks in: its own copy in the split modes, else the one map.
@@ -243,6 +244,8 @@ class System {
   // Split modes: the updates the tracker's copy followed, and their count when the last
   // keyframe went.
   long updates_followed_ = 0, followed_at_last_keyframe_ = 0;
+  // Split modes: the keyframe of the last job, in the copy (MappingJob::made_after).
+  std::shared_ptr<const KeyFrame> last_job_keyframe_;
   // The tracker's reference keyframe after the last frame (-1: none), for keyframe culling on
   // whichever thread maps.
   std::atomic<long> reference_id_{-1};
