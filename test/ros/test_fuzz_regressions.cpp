@@ -2,14 +2,20 @@
 // decoding as the harnesses: none may throw what its decoder does not document (nor, in the
 // sanitized build, touch memory it does not own). Plus the faults they found, written out.
 #include <gtest/gtest.h>
+#include <ros/message_traits.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/image_encodings.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "ply_slam/MappingJobMsg.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
 #include "target_inputs.h"
@@ -35,12 +41,55 @@ sensor_msgs::Image wrappingImage() {
   return image;
 }
 
+template <typename Msg>
+std::string layoutOf() {
+  return ros::message_traits::MD5Sum<Msg>::value();
+}
+
+// What each message target's inputs are serialised as today: the definitions' MD5 sums, as ROS
+// compares a publisher's and a subscriber's.
+std::map<std::string, std::string> todaysLayouts() {
+  using sensor_msgs::CameraInfo;
+  using sensor_msgs::Image;
+  return {{"fuzz_rgbd_decoder",
+           layoutOf<Image>() + " " + layoutOf<Image>() + " " + layoutOf<CameraInfo>()},
+          {"fuzz_keyframe_msg", layoutOf<ply_slam::KeyFrameMsg>()},
+          {"fuzz_map_update_msg", layoutOf<ply_slam::MapUpdateMsg>()},
+          {"fuzz_map_snapshot_msg", layoutOf<ply_slam::MapSnapshotMsg>()},
+          {"fuzz_mapping_job_msg", layoutOf<ply_slam::MappingJobMsg>()}};
+}
+
+const fs::path& savedInputs() {
+  static const fs::path root = fs::path(PLY_SLAM_SOURCE_DIR) / "test" / "fuzz_regressions";
+  return root;
+}
+
 }  // namespace
 
+// Bytes saved in another layout of their message misparse: the replay then tests nothing, or
+// (stop 44) reads a declared array of 20 GB. layouts.txt says what each folder was written in.
+TEST(FuzzRegressions, SavedMessagesAreInTodaysLayouts) {
+  std::ifstream in(savedInputs() / "layouts.txt");
+  ASSERT_TRUE(in) << "no " << savedInputs() / "layouts.txt";
+  std::map<std::string, std::string> saved;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    std::string target;
+    if (!(fields >> target) || target[0] == '#') continue;
+    std::getline(fields >> std::ws, saved[target]);
+  }
+  for (const auto& [target, layout] : todaysLayouts()) {
+    if (!fs::is_directory(savedInputs() / target)) continue;
+    EXPECT_EQ(saved[target], layout)
+        << target << ": its message changed since its inputs were saved; write them again in "
+        << "today's layout (scripts/reencode_fuzz_inputs.py) and put the new sum in layouts.txt";
+  }
+}
+
 TEST(FuzzRegressions, SavedInputsReplayCleanly) {
-  const fs::path root = fs::path(PLY_SLAM_SOURCE_DIR) / "test" / "fuzz_regressions";
   size_t replayed = 0;
-  for (const auto& folder : fs::directory_iterator(root)) {
+  for (const auto& folder : fs::directory_iterator(savedInputs())) {
+    if (!folder.is_directory()) continue;  // layouts.txt
     const auto target = ply_slam_fuzz::targets().find(folder.path().filename().string());
     ASSERT_NE(target, ply_slam_fuzz::targets().end()) << "no fuzz target " << folder.path();
     for (const auto& input : fs::directory_iterator(folder.path())) {
