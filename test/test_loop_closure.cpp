@@ -132,8 +132,8 @@ TEST(LoopClosure, HalvesTheDriftOfOneWalkRoundTheRing) {
   EXPECT_EQ(split.loops_closed, closed.loops_closed);
   test::expectSameTrajectory(split.trajectory, closed.trajectory);
   // Apart, three keyframes late: the keyframes the tracker made from poses the mapping side had
-  // moved since must move with them (MappingSide::moveSinceTracked). Measured (session 44):
-  // keyframe ATE 0.0070 m (in line 0.0068 m; 0.0450 m when they did not move), the ends 0.0021 m
+  // moved since must move with them (MappingSide::moveSinceTracked). Measured (session 45):
+  // keyframe ATE 0.0076 m (in line 0.0068 m; 0.0450 m when they did not move), the ends 0.0039 m
   // apart; without loop closure 0.0181 m and 0.073 m.
   EXPECT_EQ(apart.lost, 0u);
   EXPECT_GE(apart.loops_closed, 1);
