@@ -88,8 +88,9 @@ class MappingSide {
   // Replays the job's report, moved to where the map has the keyframe it was made from; returns
   // the keyframe's point links it made.
   MapUpdate::KeyFrameLinks followTracker(const MappingJob& job);
-  // How the keyframe the tracker made the job's after moved since the tracker had it (T_wc now *
-  // T_wc then^-1); none when it has not moved (or left the map).
+  // How the keyframe of the tracker's job before (MappingJob::made_after) moved since the
+  // tracker made this job's keyframe (T_wc now * T_wc then^-1); none when it has not moved (or
+  // left the map).
   std::optional<Eigen::Isometry3d> moveSinceTracked(const MappingJob& job) const;
   KeyFrameInsertionStats insertKeyFrame(const MappingJob& job, MappedKeyFrame& out);
   // What it did, for the copies of the map (`mapped`: none for a global bundle adjustment
