@@ -57,21 +57,19 @@ def copy_fields(old, new_class, path=''):
             print('  %s%s: new, left at its default' % (path, slot))
             continue
         value = getattr(old, slot)
-        nested = getattr(new, slot)
-        if hasattr(nested, '__slots__'):  # a message of ours or ROS's: field by field
-            value = copy_fields(value, type(nested), path + slot + '.')
+        if hasattr(getattr(new, slot), '__slots__'):  # a message: field by field
+            value = copy_fields(value, type(getattr(new, slot)), path + slot + '.')
         elif isinstance(value, list) and value and hasattr(value[0], '__slots__'):
-            element = message_class_of(new_class, kind)
+            element = message_type(kind.split('[')[0])
             value = [copy_fields(v, element, '%s%s[].' % (path, slot)) for v in value]
         setattr(new, slot, value)
     return new
 
 
-def message_class_of(owner, kind):
-    base = kind.split('[')[0]
-    package, name = base.split('/') if '/' in base else ('ply_slam', base)
-    return getattr(importlib.import_module(sys.modules[owner.__module__].__package__), name) \
-        if package == 'ply_slam' else getattr(importlib.import_module(package + '.msg'), name)
+def message_type(name):
+    """'package/Type' as today's definitions have it (ply_slam's: the last generated)."""
+    package, type_name = name.split('/')
+    return getattr(importlib.import_module(package + '.msg'), type_name)
 
 
 def main():

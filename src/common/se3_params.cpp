@@ -18,4 +18,10 @@ Eigen::Isometry3d fromParams(const double* params) {
   return T;
 }
 
+Eigen::Isometry3d nearestRigid(const Eigen::Isometry3d& T) {
+  Eigen::Isometry3d out = T;
+  out.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
+  return out;
+}
+
 }  // namespace ply_slam

@@ -2,19 +2,9 @@
 
 #include <map>
 
+#include "ply_slam/common/se3_params.h"
+
 namespace ply_slam {
-namespace {
-
-// The rigid transform nearest T: the composed moves of a keyframe carried update after update
-// would otherwise drift off the rotations, and Isometry3d's inverse (a transpose) feeds the drift
-// back into the next move (it grew tenfold per few updates with the tracker following late).
-Eigen::Isometry3d rigid(const Eigen::Isometry3d& T) {
-  Eigen::Isometry3d out = T;
-  out.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
-  return out;
-}
-
-}  // namespace
 
 void carryAlong(Map& map, const std::set<const KeyFrame*>& solved,
                 const std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>>& before) {
@@ -26,10 +16,11 @@ void carryAlong(Map& map, const std::set<const KeyFrame*>& solved,
   for (const auto& [kf, T_wc] : before) {
     if (!solved.count(kf)) {
       const auto parent = kf->parent ? moved.find(kf->parent->id) : moved.end();
-      kf->T_cw = rigid((parent != moved.end() ? parent->second : previous) * T_wc).inverse();
+      // Nearest rigid: carried update after update, the drift grew tenfold every few updates.
+      kf->T_cw = nearestRigid((parent != moved.end() ? parent->second : previous) * T_wc).inverse();
       carried.insert(kf->id);
     }
-    previous = moved[kf->id] = rigid(kf->T_wc() * rigid(T_wc).inverse());
+    previous = moved[kf->id] = nearestRigid(kf->T_wc() * nearestRigid(T_wc).inverse());
   }
   if (carried.empty()) return;
   for (const auto& point : map.mapPoints()) {

@@ -127,11 +127,7 @@ bool LoopCloser::plausible(const KeyFrame& query, const KeyFrame& candidate,
              options_.max_rotation_drift_floor_deg + options_.max_rotation_drift_deg_per_m * path_m;
 }
 
-KeyFrame* LoopCloser::keyFrame(long id) const {
-  for (const auto& kf : map_.keyFrames())
-    if (kf->id == id) return kf.get();
-  return nullptr;
-}
+KeyFrame* LoopCloser::keyFrame(long id) const { return map_.keyFrame(id).get(); }
 
 std::optional<KeyFramePlace> LoopCloser::place(const KeyFrame& keyframe) const {
   std::lock_guard<std::mutex> lock(detector_mutex_);

@@ -236,10 +236,9 @@ void ApartMappingSide::imagesToDenseMaps(const MappingJob& job) {
   std::shared_ptr<const KeyFramePacket> packet;
   {
     std::lock_guard<std::mutex> lock(mapping_->map().updateMutex());
-    for (const auto& kf : mapping_->map().keyFrames())
-      if (kf->id == job.keyframe->id)
-        packet = std::make_shared<const KeyFramePacket>(
-            makeKeyFramePacket(*kf, config_.camera, job.images, job.segmentation));
+    if (const auto kf = mapping_->map().keyFrame(job.keyframe->id))
+      packet = std::make_shared<const KeyFramePacket>(
+          makeKeyFramePacket(*kf, config_.camera, job.images, job.segmentation));
   }
   if (packet) receiver_.keepDenseImages(std::move(packet));
 }

@@ -124,8 +124,7 @@ MapUpdate::KeyFrameLinks MappingSide::followTracker(const MappingJob& job) {
   // line, or when the tracker keeps up, nothing moved.
   const TrackerReport* report = &job.report;
   TrackerReport moved;
-  const std::optional<Eigen::Isometry3d> move = moveSinceTracked(job);
-  if (move) {
+  if (const auto move = moveSinceTracked(job)) {
     job.keyframe->T_cw = job.keyframe->T_cw * move->inverse();
     moved = job.report;
     moveTrackerReport(moved, *move);

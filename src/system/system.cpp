@@ -236,10 +236,7 @@ std::vector<long> System::placeCandidates(const cv::Mat& orb_descriptors) const 
 }
 
 void System::followMapper(const MapUpdate& update) {
-  const std::shared_ptr<KeyFrame> reference = tracker_.referenceKeyFrame();
-  const Eigen::Isometry3d reference_before =
-      reference ? reference->T_wc() : Eigen::Isometry3d::Identity();
-  const bool reference_carried = followCarryingNewer(update);
+  const std::optional<Eigen::Isometry3d> reference_moved = followCarryingNewer(update);
   for (const auto& correction : update.world_corrections) {
     tracker_.applyCorrection(correction);
     moveTrackerReport(report_, correction);  // its line fits so far: into the world it goes on in
@@ -247,10 +244,9 @@ void System::followMapper(const MapUpdate& update) {
   // The tracker's last frame and its report so far hang from its reference keyframe: when that
   // one moved as a keyframe of its own the mapping side has not seen yet, they move with it
   // (a loop's or a global BA's move came as world corrections above).
-  if (reference_carried && update.world_corrections.empty()) {
-    const Eigen::Isometry3d moved = reference->T_wc() * reference_before.inverse();
-    tracker_.applyCorrection(moved);
-    moveTrackerReport(report_, moved);
+  if (reference_moved && update.world_corrections.empty()) {
+    tracker_.applyCorrection(*reference_moved);
+    moveTrackerReport(report_, *reference_moved);
   }
   ++updates_followed_;
   // What left the tracker's copy is the mapping side's to tell (the update says it).
@@ -258,7 +254,7 @@ void System::followMapper(const MapUpdate& update) {
   tracking_map_->takeRemovedLines();
 }
 
-bool System::followCarryingNewer(const MapUpdate& update) {
+std::optional<Eigen::Isometry3d> System::followCarryingNewer(const MapUpdate& update) {
   Map& copy = *tracking_map_;
   // Alive through the update, which may erase some (their poses are read after).
   const std::vector<std::shared_ptr<KeyFrame>> keyframes = copy.keyFrames();
@@ -269,19 +265,21 @@ bool System::followCarryingNewer(const MapUpdate& update) {
   // One that moved no keyframe moves none of them either.
   long newest = update.keyframes.empty() ? std::numeric_limits<long>::max() : -1;
   for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+  const KeyFrame* reference = tracker_.referenceKeyFrame().get();
+  std::optional<Eigen::Isometry3d> reference_before;  // when it is carried
   std::set<const KeyFrame*> seen;
   std::vector<std::pair<KeyFrame*, Eigen::Isometry3d>> kept;
-  bool reference_carried = false;
   for (const auto& [kf, T_wc] : before) {
     if (kf->bad) continue;
     if (kf->id <= newest)
       seen.insert(kf);
-    else
-      reference_carried |= kf == tracker_.referenceKeyFrame().get();
+    else if (kf == reference)
+      reference_before = T_wc;
     kept.emplace_back(kf, T_wc);
   }
   carryAlong(copy, seen, kept);
-  return reference_carried;
+  if (!reference_before) return std::nullopt;
+  return reference->T_wc() * reference_before->inverse();
 }
 
 void System::rememberTracked(const FrameResult& result) {

@@ -24,6 +24,7 @@
 
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
+#include "ply_slam/common/se3_params.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/run_arguments.h"
@@ -89,9 +90,7 @@ cv::Mat odometryDepth(const cv::Mat& depth_m) {
 Eigen::Isometry3d chainedStep(const cv::Mat& Rt) {
   Eigen::Matrix4d T_prev_cur;
   cv::cv2eigen(Rt, T_prev_cur);
-  Eigen::Isometry3d step(T_prev_cur);
-  step.linear() = Eigen::Quaterniond(step.linear()).normalized().toRotationMatrix();
-  return step;
+  return ply_slam::nearestRigid(Eigen::Isometry3d(T_prev_cur));
 }
 
 // Frame to frame over the whole sequence. Only the camera matrix is set; everything else stays

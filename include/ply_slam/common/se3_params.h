@@ -10,5 +10,8 @@ using Se3Params = std::array<double, 6>;
 
 Se3Params toParams(const Eigen::Isometry3d& T);
 Eigen::Isometry3d fromParams(const double* params);
+// The rigid transform nearest T (its rotation through a normalised quaternion): composed
+// transforms drift off the rotations, and Isometry3d's inverse (a transpose) feeds the drift on.
+Eigen::Isometry3d nearestRigid(const Eigen::Isometry3d& T);
 
 }  // namespace ply_slam

@@ -217,8 +217,9 @@ class System {
   void startInMap(bool localisation_only);
   // followMapper's update into the copy: the keyframes the tracker made after the update's newest
   // (the mapping side has not seen them yet) move as the one before them moved (carryAlong), and
-  // the landmarks they made with them. Returns whether the tracker's reference keyframe moved so.
-  bool followCarryingNewer(const MapUpdate& update);
+  // the landmarks they made with them. Returns how the tracker's reference keyframe moved so
+  // (T_wc after * T_wc before^-1); none when it is not one of them.
+  std::optional<Eigen::Isometry3d> followCarryingNewer(const MapUpdate& update);
   // The mapping thread's results, followed by the tracker's copy (split modes).
   std::vector<MappedKeyFrame> followed(std::vector<MappedKeyFrame> mapped);
   // The map the tracker tracks in: its own copy in the split modes, else the one map.
