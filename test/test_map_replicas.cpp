@@ -244,6 +244,74 @@ TEST(MapReplicas, KeyFramesTheMappingSideHasNotSeenMoveWithTheOneBefore) {
   EXPECT_GE(checked, 20u);
 }
 
+// A mapping side that stalls (overloaded, or busy with a loop): the tracker hands over no more
+// than tracking.keyframe_max_unmapped + 1 keyframes it has not answered, goes on tracking
+// against the map it has, and makes keyframes again once the answers come.
+TEST(MapReplicas, TheTrackerHoldsBackKeyFramesWhileTheMappingSideIsBehind) {
+  const TempDir dir;
+  SynthOptions options;
+  options.scene = SceneKind::kOffice;
+  options.frames = 150;
+  options.noise = true;
+  writeSyntheticSequence(SyntheticSequence(options), dir.path().string());
+  const TumSequence sequence(dir.path().string());
+  SystemConfig config = loadConfig(dir.file("camera.yaml"));
+  const size_t bound = static_cast<size_t>(config.tracking.keyframe_max_unmapped);
+  ASSERT_EQ(bound, 3u);  // the shipped default
+
+  // Stalled for the first 60 frames (a tracker wants a keyframe every 5 frames at most), then
+  // one job mapped per frame; with `forget`, nobody maps and from then on the tracker is told
+  // after each frame that its jobs went nowhere (as tracking_node does without a subscriber).
+  struct Outcome {
+    size_t jobs_in_stall = 0, jobs = 0, held_back = 0, most_waiting = 0, lost = 0;
+  };
+  const auto run = [&](int max_unmapped, bool forget) {
+    config.tracking.keyframe_max_unmapped = max_unmapped;
+    System tracker(config, MappingMode::kApart);
+    MappingSide mapping(config, true, true);
+    std::deque<MappingJob> waiting;
+    tracker.setJobSink([&](MappingJob job) { waiting.push_back(std::move(job)); });
+    Outcome out;
+    for (size_t i = 0; i < sequence.size(); ++i) {
+      const FrameResult r = tracker.process(sequence.load(i, config.camera.depth_factor));
+      out.lost += r.tracking.state != TrackingState::kOk;
+      out.jobs += r.tracking.new_keyframe != nullptr;
+      out.held_back += r.tracking.keyframe_held_back;
+      out.most_waiting = std::max(out.most_waiting, waiting.size());
+      if (i + 1 == 60) out.jobs_in_stall = out.jobs;
+      if (forget && i + 1 >= 60) {
+        tracker.forgetUnansweredJobs();
+        waiting.clear();
+      }
+      EXPECT_EQ(tracker.mappingBacklog(), waiting.size());
+      if (i + 1 < 60 || forget || waiting.empty()) continue;
+      tracker.followMapUpdate(*mapping.mapKeyFrame(waiting.front()).map_update);
+      waiting.pop_front();
+    }
+    return out;
+  };
+  const Outcome bounded = run(static_cast<int>(bound), false);
+  const Outcome unbounded = run(1000, false);
+  const Outcome forgotten = run(static_cast<int>(bound), true);
+  std::cout << "jobs during the stall / in all / frames held back / most waiting: bounded "
+            << bounded.jobs_in_stall << " / " << bounded.jobs << " / " << bounded.held_back << " / "
+            << bounded.most_waiting << "; unbounded " << unbounded.jobs_in_stall << " / "
+            << unbounded.jobs << " / " << unbounded.held_back << " / " << unbounded.most_waiting
+            << "; forgotten " << forgotten.jobs_in_stall << " / " << forgotten.jobs << "\n";
+  EXPECT_EQ(bounded.lost, 0u);
+  EXPECT_EQ(bounded.jobs_in_stall, bound + 1);
+  EXPECT_EQ(bounded.most_waiting, bound + 1);
+  EXPECT_GT(bounded.held_back, 0u);
+  // The answers came: keyframes again (as many after the stall as without it, within 3).
+  EXPECT_GE(bounded.jobs - bounded.jobs_in_stall + 3, unbounded.jobs - unbounded.jobs_in_stall);
+  // Without the bound the stall piles the jobs up: the test can tell.
+  EXPECT_GT(unbounded.jobs_in_stall, bound + 4);
+  EXPECT_EQ(unbounded.held_back, 0u);
+  // Forgotten (no mapping side listens): the tracker makes its keyframes on.
+  EXPECT_EQ(forgotten.lost, 0u);
+  EXPECT_GE(forgotten.jobs, bounded.jobs_in_stall + 10);
+}
+
 // Loop corrections (rigid moves, fusion across the loop, the pose graph, the global BA written
 // back) reach the tracker's copy as the whole map's values and the journal of the merges.
 TEST(MapReplicas, FollowTheMapperThroughLoopCorrections) {

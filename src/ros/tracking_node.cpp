@@ -392,6 +392,7 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
     ++tracked_;
   else
     ++lost_;
+  keyframes_held_back_ += result.tracking.keyframe_held_back;
   publish(rgb, images, instances, result);
   publishJobs(rgb.header.stamp);
 }
@@ -437,11 +438,13 @@ void TrackingNode::askMapperForItsMap() {
 
 void TrackingNode::publishJobs(const ros::Time& stamp) {
   // A mapping_node that starts later takes the tracker's copy over (hand_over_map).
-  if (!outgoing_.empty() && job_pub_.getNumSubscribers() == 0)
+  if (!outgoing_.empty() && job_pub_.getNumSubscribers() == 0) {
     ROS_WARN_STREAM_THROTTLE(10, "tracking_node: no mapping_node takes the keyframes on "
                                      << job_pub_.getTopic()
                                      << ": no local BA, culling or loop closure until one does "
                                         "(mapping.launch; or mapping_apart:=false)");
+    system_->forgetUnansweredJobs();  // no answer comes: keyframes are not held back for them
+  }
   for (const MappingJob& job : outgoing_) {
     MappingJobMsg msg = toMsg(job, options_.world_frame);
     msg.camera = job_camera_;
@@ -543,7 +546,7 @@ void TrackingNode::publishStats() {
     << " synchronised=" << synchronised_ << " flushed=" << flushed_ << " tracked=" << tracked_
     << " lost=" << lost_ << " keyframes=" << keyframes_ << " map_updates=" << updates_
     << " loops=" << loops_ << " mapping_backlog=" << mapping_backlog_
-    << " updates_followed=" << updates_followed_
+    << " keyframes_held_back=" << keyframes_held_back_ << " updates_followed=" << updates_followed_
     << " updates_asked=" << (mapper_updates_ ? mapper_updates_->asked() : 0)
     << " updates_lost=" << (mapper_updates_ ? mapper_updates_->lost() : 0)
     << " follow_cpu_ms_max=" << longest_follow_cpu_ms_ << " dropped_behind=" << behind_dropped_

@@ -118,6 +118,7 @@ FrameResult System::process(const RgbdImages& images, const std::vector<Instance
   if (tracking_map_)
     for (const auto& mapped : result.mapped) followMapper(*mapped.map_update);
   result.timing.follow_ms = follow.elapsedMs();
+  tracker_.setUnmappedKeyFrames(mappingBacklog());
   result.tracking = tracker_.track(frame);
   if (const auto& reference = tracker_.referenceKeyFrame()) reference_id_ = reference->id;
   result.timing.tracking_ms = tracking.elapsedMs();
@@ -195,6 +196,7 @@ void System::handOverKeyFrame(const RgbdImages& images, std::unique_lock<std::mu
   job.loaded_map = loaded_map_;
   if (!mapping_) {  // kApart
     if (places_) places_->add(*job.keyframe, job.segmentation);
+    unanswered_jobs_.push_back(job.keyframe->id);
     job_sink_(std::move(job));
     return;
   }
@@ -227,6 +229,10 @@ void System::followMapUpdate(const MapUpdate& update) {
   followMapper(update);
   if (places_)
     for (long id : update.erased_keyframes) places_->remove(id);
+  long newest = update.replayed.keyframe;
+  for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+  while (!unanswered_jobs_.empty() && unanswered_jobs_.front() <= newest)
+    unanswered_jobs_.pop_front();
 }
 
 std::vector<long> System::placeCandidates(const cv::Mat& orb_descriptors) const {
@@ -319,7 +325,10 @@ std::vector<MappedKeyFrame> System::takeMapped() {
   return followed(mapping_thread_->takeFinished());
 }
 
-size_t System::mappingBacklog() const { return mapping_thread_ ? mapping_thread_->backlog() : 0; }
+size_t System::mappingBacklog() const {
+  if (mapping_thread_) return mapping_thread_->backlog();
+  return mapping_ ? 0 : unanswered_jobs_.size();
+}
 
 size_t System::longestMappingQueue() const {
   return mapping_thread_ ? mapping_thread_->longestQueue() : 0;
@@ -458,6 +467,7 @@ MapHandover System::handOverMap() {
   handover.next_ids = tracking_map_->nextIds();
   report_ = TrackerReport{};
   followed_at_last_keyframe_ = updates_followed_;
+  unanswered_jobs_.clear();  // the copy holds every keyframe handed over
   return handover;
 }
 

@@ -390,13 +390,15 @@ struct RunCounts {
   double line_inliers = 0.0;
   size_t dynamic_features = 0;
   long frames = 0, lost = 0, keyframes_created = 0, keyframes_culled = 0, points_culled = 0;
-  long first_tracked = -1;  // index of the first tracked frame (in a loaded map: relocalised)
+  long keyframes_held_back = 0;  // frames that wanted a keyframe while the mapping side was behind
+  long first_tracked = -1;       // index of the first tracked frame (in a loaded map: relocalised)
 
   void add(const FrameResult& r) {
     if (first_tracked < 0 && r.tracking.state == TrackingState::kOk) first_tracked = frames;
     ++frames;
     if (r.tracking.state != TrackingState::kOk) ++lost;
     keyframes_created += r.tracking.new_keyframe != nullptr;
+    keyframes_held_back += r.tracking.keyframe_held_back;
     total_ms.push_back(r.timing.total_ms);
     lines_ms.push_back(r.timing.lines_ms);
     line_inliers += r.tracking.line_inliers;
@@ -720,7 +722,8 @@ Json TumRun::summarise() {
   json["peak_rss_mb"] = nullptr;  // set once the dense maps and the plot are done
   json["loops"] = loopsJson(*system_, corrections_);
   json["mapping"] = {{"own_thread", options_.realtime},
-                     {"longest_queue", system_->longestMappingQueue()}};
+                     {"longest_queue", system_->longestMappingQueue()},
+                     {"keyframes_held_back", counts_.keyframes_held_back}};
   evaluation_ = evaluate(sequence_, trajectory_);
   json.update(evaluation_.fields);
   return json;

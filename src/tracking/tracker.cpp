@@ -116,8 +116,12 @@ TrackingResult Tracker::track(Frame& frame) {
       result.inliers = inliers;
       result.line_inliers = frame.numLineMatches();
       if (needKeyFrame(frame, inliers)) {
-        last_keyframe_ = mapping_.addKeyFrame(frame);
-        result.new_keyframe = last_keyframe_;
+        result.keyframe_held_back =
+            unmapped_keyframes_ > static_cast<size_t>(options_.keyframe_max_unmapped);
+        if (!result.keyframe_held_back) {
+          last_keyframe_ = mapping_.addKeyFrame(frame);
+          result.new_keyframe = last_keyframe_;
+        }
       }
     } else {
       state_ = TrackingState::kLost;

@@ -18,6 +18,7 @@ TrackingOptions readTrackingOptions(ConfigSection s) {
   s.readPositive("keyframe_max_frames", t.keyframe_max_frames);
   s.readPositive("keyframe_translation", t.keyframe_translation);
   s.readPositive("keyframe_rotation_deg", t.keyframe_rotation_deg);
+  s.readInRange("keyframe_max_unmapped", t.keyframe_max_unmapped, 0, 1000);
   s.readPositive("max_prediction_error", t.max_prediction_error);
   s.readPositive("pnp_iterations", t.pnp_iterations);
   s.readPositive("pnp_reprojection_px", t.pnp_reprojection_px);

@@ -160,7 +160,7 @@ class TrackingNode {
   // what it missed from the gaps).
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
-      updates_{0}, loops_{0}, updates_followed_{0};
+      updates_{0}, loops_{0}, updates_followed_{0}, keyframes_held_back_{0};
   std::vector<double> total_ms_;  // worker thread only
 };
 

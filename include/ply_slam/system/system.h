@@ -128,8 +128,13 @@ class System {
   std::vector<MappedKeyFrame> takeMapped();
   // The most keyframes that waited for the mapping thread at once (0 with kInline).
   size_t longestMappingQueue() const;
-  // Keyframes the mapping thread has not finished yet (0 with kInline).
+  // Keyframes handed to the mapping side that it has not finished: the mapping thread's jobs
+  // waiting or running, with kApart the jobs no update has answered yet (0 in line). The
+  // tracker makes no keyframe while there are more than tracking.keyframe_max_unmapped.
   size_t mappingBacklog() const;
+  // kApart: no mapping side took the jobs handed over so far (nobody listens): the tracker
+  // waits for no answer to them.
+  void forgetUnansweredJobs() { unanswered_jobs_.clear(); }
 
   // Tracked frames, each placed relative to its reference keyframe as the map has that keyframe
   // now: bundle adjustment and loop closure move the past with the map.
@@ -261,7 +266,10 @@ class System {
   AnchoredTrajectory tracked_;
   std::map<long, std::shared_ptr<const KeyFrame>> anchors_;
   std::set<long> unmapped_anchors_;
-  JobSink job_sink_;         // kApart
+  JobSink job_sink_;  // kApart
+  // kApart: the keyframe ids of the jobs handed over that no update has answered yet, oldest
+  // first (an update answers every job up to the newest keyframe it names).
+  std::deque<long> unanswered_jobs_;
   uint64_t loaded_map_ = 0;  // the checksum of the map file loaded (0: none), for the jobs
   std::optional<MapFileSetup> apart_file_setup_;  // kApart: mapFileSetup's, once made
   // kApart with loop.enabled: the keyframes' ORB words, for relocalisation (the mapping side's

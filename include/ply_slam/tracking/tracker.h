@@ -29,7 +29,9 @@ struct TrackingResult {
   int inliers = 0;  // point inliers; at initialisation the points created (nothing to match yet)
   int line_inliers = 0;                    // line inliers (0 when lines are disabled)
   std::shared_ptr<KeyFrame> new_keyframe;  // set when this frame became a keyframe
-  std::string method;                      // how the pose was found: init, motion, pnp, reloc
+  // It would have become one, but the mapping side is behind (keyframe_max_unmapped).
+  bool keyframe_held_back = false;
+  std::string method;  // how the pose was found: init, motion, pnp, reloc
 };
 
 // Frame-to-local-map tracking of RGB-D frames: constant-velocity prediction and projection
@@ -60,6 +62,9 @@ class Tracker {
   // Localisation in a loaded map: track against it, add no keyframes (and so no landmarks) and
   // leave its geometry as it was saved.
   void setLocalisationOnly(bool only) { localisation_only_ = only; }
+  // Keyframes handed to the mapping side that it has not finished, before each frame: while
+  // there are more than keyframe_max_unmapped, tracking makes no new one.
+  void setUnmappedKeyFrames(size_t count) { unmapped_keyframes_ = count; }
   TrackingState state() const { return state_; }
   // The camera's current velocity, null when unknown (start, after a loss).
   const CameraVelocity* velocity() const { return has_velocity_ ? &velocity_ : nullptr; }
@@ -111,6 +116,7 @@ class Tracker {
   std::vector<MapPoint*> in_view_;
   PlaceCandidates place_candidates_;
   bool localisation_only_ = false;
+  size_t unmapped_keyframes_ = 0;
 };
 
 }  // namespace ply_slam

@@ -20,6 +20,10 @@ struct TrackingOptions {
   int keyframe_max_frames = 5;          // or after this many frames
   double keyframe_translation = 0.10;   // m, or after moving this far
   double keyframe_rotation_deg = 15.0;  // or after turning this far
+  // ... but none while more keyframes than this wait for the mapping side (ORB-SLAM inserts
+  // while fewer than 3 wait for local mapping): a mapping side that cannot keep up holds the
+  // tracker back instead of queueing keyframes, with their images, without bound.
+  int keyframe_max_unmapped = 3;
   // m; a tracked pose this far from the constant-velocity prediction is a wrong solve (a
   // camera does not move 15 cm beyond its prediction in one frame), not a motion: lost.
   double max_prediction_error = 0.15;
