@@ -261,6 +261,25 @@ TEST(DenseMappingWorker, DrainsTheQueueAndSkipsBadPackets) {
   worker.finish();  // again: nothing happens
 }
 
+// A worker behind the mapping side: a keyframe culled before its turn is dropped unbuilt.
+TEST(DenseMappingWorker, KeyFramesCulledWhileQueuedAreNeverBuilt) {
+  DenseMappingWorker worker(testParams());
+  // Holding the maps, the worker cannot insert its first keyframe: the others stay queued.
+  worker.withMaps([&worker](DenseMap&, const SemanticOctree&) {
+    for (long id : {1, 2, 3}) worker.push(wallPacket(id, {0.1 * id, 0, 0}, false, false));
+    MapUpdate culled;
+    culled.erased_keyframes = {2};
+    worker.follow(culled);
+  });
+  worker.finish();
+  EXPECT_EQ(worker.droppedUnbuilt(), 1u);
+  EXPECT_EQ(worker.keyFrameMs().size(), 2u);
+  worker.withMaps([](DenseMap& map, const SemanticOctree&) {
+    EXPECT_EQ(map.numKeyFrames(), 2u);
+    EXPECT_EQ(map.keyFrames().count(2), 0u);
+  });
+}
+
 TEST(DenseMappingWorker, PoseUpdateRebuildsTheOctreeAtTheNewPose) {
   DenseMappingWorker worker(testParams());
   worker.push(wallPacket(1, {0, 0, 0}, false, false));

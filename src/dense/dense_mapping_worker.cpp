@@ -1,5 +1,8 @@
 #include "ply_slam/dense/dense_mapping_worker.h"
 
+#include <algorithm>
+#include <iterator>
+#include <set>
 #include <stdexcept>
 
 #include "ply_slam/common/stopwatch.h"
@@ -36,9 +39,21 @@ void DenseMappingWorker::push(std::shared_ptr<const KeyFramePacket> packet, cv::
 }
 
 void DenseMappingWorker::follow(const MapUpdate& update) {
-  if (!update.erased_keyframes.empty())
-    enqueue({nullptr, cv::Mat(), nullptr, update.erased_keyframes});
+  if (!update.erased_keyframes.empty()) enqueueErasure(update.erased_keyframes);
   if (update.whole_map) push(update);
+}
+
+void DenseMappingWorker::enqueueErasure(const std::vector<long>& erased) {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    const std::set<long> ids(erased.begin(), erased.end());
+    const auto unbuilt = std::remove_if(queue_.begin(), queue_.end(), [&ids](const Job& job) {
+      return job.packet && ids.count(job.packet->id) > 0;
+    });
+    dropped_unbuilt_ += static_cast<size_t>(std::distance(unbuilt, queue_.end()));
+    queue_.erase(unbuilt, queue_.end());
+  }
+  enqueue({nullptr, cv::Mat(), nullptr, erased});
 }
 
 void DenseMappingWorker::push(const MapUpdate& update) {
@@ -113,6 +128,11 @@ std::vector<double> DenseMappingWorker::keyFrameMs() const {
 size_t DenseMappingWorker::maxQueueLength() const {
   std::lock_guard<std::mutex> lock(queue_mutex_);
   return max_queue_;
+}
+
+size_t DenseMappingWorker::droppedUnbuilt() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return dropped_unbuilt_;
 }
 
 size_t DenseMappingWorker::rejectedPackets() const {

@@ -329,6 +329,7 @@ Json finishDenseMaps(DenseMappingWorker& dense, const System& system, const Syst
             {"ms_per_keyframe_p95", rounded(percentile(ms, 0.95, 0.0))},
             {"global_cloud_ms", rounded(global_ms)},
             {"max_queue", dense.maxQueueLength()},
+            {"dropped_unbuilt", dense.droppedUnbuilt()},
             {"rejected_packets", dense.rejectedPackets()},
             {"cloud_bytes", map.memoryBytes()},
             {"octree_bytes", octree.memoryBytes()},

@@ -34,9 +34,10 @@ class DenseMappingWorker {
   void push(const MapUpdate& update);
   // Queues what the sparse map changed with a keyframe: the keyframes it culled leave the dense
   // map (those that made them redundant see the same space; the octree keeps what they added
-  // until its next rebuild); after a whole-map correction (a loop) the keyframes are re-placed as
-  // push(update) does. Local BA's updates move nothing here: a rebuild for millimetres is not
-  // worth it.
+  // until its next rebuild), and those still queued are dropped unbuilt (a worker that falls
+  // behind catches up on the keyframes the map keeps instead of queueing every one made, images
+  // and all); after a whole-map correction (a loop) the keyframes are re-placed as push(update)
+  // does. Local BA's updates move nothing here: a rebuild for millimetres is not worth it.
   void follow(const MapUpdate& update);
   // Processes everything queued, then stops the thread. Idempotent.
   void finish();
@@ -49,6 +50,8 @@ class DenseMappingWorker {
   // ms spent per keyframe (cloud + dense map + octree), in arrival order.
   std::vector<double> keyFrameMs() const;
   size_t maxQueueLength() const;
+  // Keyframes culled while still queued (follow): never built.
+  size_t droppedUnbuilt() const;
   // Packets that could not be used, and the first reason.
   size_t rejectedPackets() const;
   std::string firstError() const;
@@ -65,6 +68,8 @@ class DenseMappingWorker {
   void run();
   void process(const Job& job);
   void enqueue(Job job);
+  // Drops the queued packets of `erased`, then queues their erasure.
+  void enqueueErasure(const std::vector<long>& erased);
 
   KeyFrameCloudBuilder builder_;
   DenseMap map_;
@@ -75,6 +80,7 @@ class DenseMappingWorker {
   std::deque<Job> queue_;
   bool stopping_ = false;
   size_t max_queue_ = 0;
+  size_t dropped_unbuilt_ = 0;
   std::vector<double> keyframe_ms_;
   size_t rejected_ = 0;
   std::string first_error_;
