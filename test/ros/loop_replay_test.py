@@ -10,6 +10,7 @@ mapping_apart, mapping.launch map_keyframes): the tracker sends its keyframes as
 closes the loop and sends the updates back, and the tracker's copy of the map follows them; neither
 node may hold the other up for more than a frame period, and the map file mapping_node then writes
 itself loads again and relocalises the ring's first frames."""
+import glob
 import hashlib
 import json
 import os
@@ -68,6 +69,19 @@ def keep_head(sequence, frames):
     return head
 
 
+def remove_stale_rings(keep, max_age_s=2 * 3600):
+    """Each build of the renderer makes a new ring (1.3 GB): those of other builds go once no
+    test has used them for longer than a test run lasts (each use touches its folder)."""
+    now = time.time()
+    for old in glob.glob(os.path.join(tempfile.gettempdir(), "ply_slam_ring_*")):
+        try:
+            stale = old != keep and now - os.path.getmtime(old) > max_age_s
+        except OSError:
+            continue  # removed meanwhile
+        if stale:
+            shutil.rmtree(old, True)
+
+
 def ring_bag(frames, config):
     """The ring rendered and written as a bag (its folder, the bag, its first 3 frames as a
     sequence), once for both loop rostests (rostests run one at a time): kept in the temporary
@@ -80,6 +94,7 @@ def ring_bag(frames, config):
     ring, bag = os.path.join(cache, "ring"), os.path.join(cache, "ring.bag")
     done = os.path.join(cache, "done")
     if not os.path.isfile(done):
+        remove_stale_rings(cache)
         shutil.rmtree(cache, True)
         subprocess.run([synth, "--out", ring, "--scene", "ring", "--frames", str(frames),
                         "--loop", "--noise"], check=True, capture_output=True)
@@ -88,6 +103,7 @@ def ring_bag(frames, config):
         shutil.rmtree(os.path.join(ring, "rgb"))  # the bag has them now
         shutil.rmtree(os.path.join(ring, "depth"))
         open(done, "w").close()
+    os.utime(cache)  # in use: not stale for the other builds' tests
     return ring, bag, ring + "_head"
 
 
