@@ -181,7 +181,10 @@ void MappingNode::keepMapUpdate(const MapUpdate& update) {
     std::lock_guard<std::mutex> lock(mutex_);
     AnchoredTrajectory::KeyFramePoses live;
     if (!update.erased_keyframes.empty()) live = anchorPoses();
-    for (long id : update.erased_keyframes) live.erase(id);
+    for (long id : update.erased_keyframes) {
+      live.erase(id);
+      dense_keyframes_.erase(id);  // gone from the map: no dense images to miss
+    }
     for (long id : update.erased_keyframes) {
       const auto erased = store_.keyFrames().find(id);
       if (erased != store_.keyFrames().end())

@@ -18,6 +18,17 @@
 #include "ply_slam/system/key_frame_packet_builder.h"
 
 namespace ply_slam {
+namespace {
+
+// The newest keyframe whose pose the update carries (-1: none).
+long newestPosed(const MapUpdate& update) {
+  long newest = -1;
+  for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+  return newest;
+}
+
+}  // namespace
+
 System::System(const SystemConfig& config, MappingMode mode)
     : config_(config),
       extractor_(config.orb),
@@ -229,8 +240,8 @@ void System::followMapUpdate(const MapUpdate& update) {
   followMapper(update);
   if (places_)
     for (long id : update.erased_keyframes) places_->remove(id);
-  long newest = update.replayed.keyframe;
-  for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+  // Job 0's update poses nothing (no local BA yet): the replayed keyframe answers it too.
+  const long newest = std::max(update.replayed.keyframe, newestPosed(update));
   while (!unanswered_jobs_.empty() && unanswered_jobs_.front() <= newest)
     unanswered_jobs_.pop_front();
 }
@@ -269,8 +280,8 @@ std::optional<Eigen::Isometry3d> System::followCarryingNewer(const MapUpdate& up
   copy.apply(update);
   // The update accounts for every keyframe up to its newest; the tracker made the later ones.
   // One that moved no keyframe moves none of them either.
-  long newest = update.keyframes.empty() ? std::numeric_limits<long>::max() : -1;
-  for (const auto& pose : update.keyframes) newest = std::max(newest, pose.id);
+  const long newest =
+      update.keyframes.empty() ? std::numeric_limits<long>::max() : newestPosed(update);
   const KeyFrame* reference = tracker_.referenceKeyFrame().get();
   std::optional<Eigen::Isometry3d> reference_before;  // when it is carried
   std::set<const KeyFrame*> seen;
