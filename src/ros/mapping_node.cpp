@@ -111,7 +111,6 @@ void MappingNode::keepLoadedMap() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     store_.restore(loaded);
-    dense_missing_ = dense_ ? loaded.size() : 0;
   }
   ROS_INFO_STREAM("mapping_node: maps on from " << options_.map << ": " << loaded.size()
                                                 << " keyframes");
@@ -248,6 +247,7 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
   Trajectory& poses = snapshot.trajectory;
   MapUpdate placed;
   placed.whole_map = true;
+  size_t without_images = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const double last = poses.empty() ? -1.0 : poses.back().stamp;
@@ -258,17 +258,14 @@ void MappingNode::onMapSnapshot(const ply_slam::MapSnapshotMsgConstPtr& msg) {
     keyframe_sequence_.resynchronise(msg->next_keyframe_sequence);
     update_sequence_.resynchronise(msg->next_update_sequence);
     resend_requested_ = false;
-    dense_missing_ = 0;
-    for (const auto& k : keyframes) {
-      placed.keyframes.push_back({k.id, k.T_wc.inverse()});
-      dense_missing_ += dense_ && !dense_keyframes_.count(k.id);
-    }
+    for (const auto& k : keyframes) placed.keyframes.push_back({k.id, k.T_wc.inverse()});
     for (long id : placed.erased_keyframes) dense_keyframes_.erase(id);
+    without_images = denseMissing();
   }
   if (dense_) dense_->follow(placed);
   ROS_INFO_STREAM("mapping_node: map restored from the tracker: "
                   << keyframes.size() << " keyframes, " << poses.size() << " poses"
-                  << (dense_missing_ ? ", " + std::to_string(dense_missing_) +
+                  << (without_images ? ", " + std::to_string(without_images) +
                                            " keyframes without images for the dense maps"
                                      : std::string()));
   publishMap(msg->header.stamp);
@@ -296,11 +293,19 @@ std::string MappingNode::partialReason(bool dense) const {
     add("missed " + std::to_string(keyframe_sequence_.missed()) + " keyframe messages");
   if (update_sequence_.missed() > 0)
     add("missed " + std::to_string(update_sequence_.missed()) + " map updates");
-  if (dense && dense_missing_ > 0)
-    add("the dense maps lack " + std::to_string(dense_missing_) +
+  const size_t missing = dense ? denseMissing() : 0;
+  if (missing > 0)
+    add("the dense maps lack " + std::to_string(missing) +
         " keyframes without images (loaded from a map file, or sent while mapping_node was not "
         "running)");
   return reason;
+}
+
+size_t MappingNode::denseMissing() const {
+  if (!dense_) return 0;
+  size_t missing = 0;
+  for (const auto& [id, keyframe] : store_.keyFrames()) missing += !dense_keyframes_.count(id);
+  return missing;
 }
 
 void MappingNode::noteCallbackMs(double ms, double cpu_ms) {

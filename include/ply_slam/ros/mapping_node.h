@@ -67,6 +67,9 @@ class MappingNode : private MappedReceiver {
   void rebuildTrajectory(const Trajectory& trajectory);
   // Why the map or the trajectory is not whole (empty: it is); under mutex_.
   std::string partialReason(bool dense) const;
+  // Keyframes of the map now whose images the dense maps never got (loaded from a file, or
+  // sent while this node was down); 0 without dense maps. Under mutex_.
+  size_t denseMissing() const;
   // Keyframe poses (T_cw) of the store, and kWorld (identity) for frames before any keyframe.
   AnchoredTrajectory::KeyFramePoses anchorPoses() const;
   Trajectory cameraTrajectory() const;
@@ -95,7 +98,7 @@ class MappingNode : private MappedReceiver {
 
   // Guards the map's copy and what says how whole it is: store_, camera_trajectory_,
   // map_updates_, loop_updates_, the longest callback times, the two message sequences,
-  // resend_requested_, dense_keyframes_, dense_missing_ and T_map_world_.
+  // resend_requested_, dense_keyframes_ and T_map_world_.
   std::mutex mutex_;
   MapStore store_;
   // Every tracked frame from the tracker's ~pose, hung from the newest keyframe at its arrival
@@ -118,7 +121,6 @@ class MappingNode : private MappedReceiver {
   MessageSequence keyframe_sequence_, update_sequence_;
   bool resend_requested_ = false;
   std::set<long> dense_keyframes_;  // keyframes whose images the dense maps got
-  size_t dense_missing_ = 0;        // keyframes of the map the dense maps never got
   ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
 
