@@ -393,8 +393,25 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
   else
     ++lost_;
   keyframes_held_back_ += result.tracking.keyframe_held_back;
+  warnWhileHeldBack(images.stamp, result.tracking.keyframe_held_back);
   publish(rgb, images, instances, result);
   publishJobs(rgb.header.stamp);
+}
+
+// Holding keyframes back for a moment is how the tracker waits for a busy mapping side; for
+// seconds on end, the mapping side is far behind or refuses the jobs, and the map stops growing.
+void TrackingNode::warnWhileHeldBack(double stamp, bool held_back) {
+  if (!held_back) {
+    held_back_since_.reset();
+    return;
+  }
+  if (!held_back_since_) held_back_since_ = stamp;
+  if (stamp - *held_back_since_ >= kHeldBackWarning_s)
+    ROS_WARN_STREAM_THROTTLE(10, "tracking_node: no new keyframe for "
+                                     << stamp - *held_back_since_
+                                     << " s: " << system_->mappingBacklog()
+                                     << " keyframes wait for mapping_node's answer (is it far "
+                                        "behind, or refusing the jobs? see its log)");
 }
 
 // Updates wait for the System (made at the first frame, in the map they build on).

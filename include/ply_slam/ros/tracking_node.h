@@ -95,6 +95,8 @@ class TrackingNode {
   // sent.
   bool followMapper();
   void publishJobs(const ros::Time& stamp);
+  // A warning (throttled) when keyframes have been held back for kHeldBackWarning_s.
+  void warnWhileHeldBack(double stamp, bool held_back);
   void addToPath(const geometry_msgs::PoseStamped& pose, const Eigen::Isometry3d& T_wc);
   void sendPath();
 
@@ -161,7 +163,9 @@ class TrackingNode {
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
       updates_{0}, loops_{0}, updates_followed_{0}, keyframes_held_back_{0};
-  std::vector<double> total_ms_;  // worker thread only
+  std::vector<double> total_ms_;           // worker thread only
+  std::optional<double> held_back_since_;  // worker thread only: frame stamp (s)
+  static constexpr double kHeldBackWarning_s = 3.0;
 };
 
 }  // namespace ply_slam
