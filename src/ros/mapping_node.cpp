@@ -182,7 +182,7 @@ void MappingNode::keepMapUpdate(const MapUpdate& update) {
     if (!update.erased_keyframes.empty()) live = anchorPoses();
     for (long id : update.erased_keyframes) {
       live.erase(id);
-      dense_keyframes_.erase(id);  // gone from the map: no dense images to miss
+      dense_keyframes_.erase(id);  // the set stays as large as the map
     }
     for (long id : update.erased_keyframes) {
       const auto erased = store_.keyFrames().find(id);

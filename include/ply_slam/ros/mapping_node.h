@@ -120,7 +120,9 @@ class MappingNode : private MappedReceiver {
   // lacks until a snapshot restores it.
   MessageSequence keyframe_sequence_, update_sequence_;
   bool resend_requested_ = false;
-  std::set<long> dense_keyframes_;  // keyframes whose images the dense maps got
+  // Keyframes of the map whose images the dense maps got (erased ones are dropped: denseMissing
+  // counts over the store, so only the set's size depends on it).
+  std::set<long> dense_keyframes_;
   ros::Publisher points_pub_, lines_pub_, keyframes_pub_, path_pub_;
   ros::ServiceServer save_trajectory_srv_, save_map_srv_;
 
