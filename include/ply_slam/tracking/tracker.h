@@ -106,7 +106,6 @@ class Tracker {
   CameraVelocity velocity_;  // between the last two tracked frames
   bool has_velocity_ = false;
   std::shared_ptr<KeyFrame> last_keyframe_;
-  std::vector<std::shared_ptr<KeyFrame>> local_keyframes_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
   // Of the frame being tracked, cleared per frame (landmarks hold no tracker state): what the
