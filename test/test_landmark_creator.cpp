@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -138,6 +139,34 @@ TEST(Tracker, WritesToTheMapOnlyThroughItsSink) {
   EXPECT_GT(visible, 1000);
   EXPECT_GT(found, 500);
   EXPECT_LE(found, visible);
+}
+
+// The mapping side's found / visible ratio retires points: a landmark counts in view at most once
+// per frame, also when the motion model searches a second time in a wider window (jumps over
+// frames the prediction does not follow).
+TEST(Tracker, CountsEachLandmarkInViewOncePerFrame) {
+  PLY_SLAM_REQUIRE_SHARED(Fr1Frames::folder());
+  const Fr1Frames frames;
+  const SystemConfig& config = frames.config();
+  Map map;
+  LandmarkCreator creator(config.camera, config.tracking.max_point_depth, config.lines, map);
+  struct CountingSink : FilteringSink {
+    using FilteringSink::FilteringSink;
+    void countVisible(const std::vector<MapPoint*>& in_view) override {
+      std::set<const MapPoint*> once(in_view.begin(), in_view.end());
+      repeated += in_view.size() - once.size();
+      counted += in_view.size();
+      FilteringSink::countVisible(in_view);
+    }
+    size_t repeated = 0, counted = 0;
+  } sink(creator, true);
+  Tracker tracker(config.camera, config.tracking, config.orb, config.lines, map, sink);
+  for (size_t i : {0, 1, 2, 12, 13, 24, 25, 31}) {
+    Frame f = frames.frame(i);
+    EXPECT_EQ(tracker.track(f).state, TrackingState::kOk) << "frame " << i;
+  }
+  EXPECT_GT(sink.counted, 1000u);
+  EXPECT_EQ(sink.repeated, 0u);
 }
 
 }  // namespace

@@ -191,6 +191,8 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
   int matches = matcher_.match(frame, points, &levels, params, in_view_, &projected_);
   if (matches < 2 * options_.min_tracked_points) {
     frame.clearMatches();
+    in_view_.clear();  // the same landmarks again: each counts in view once per frame
+    projected_.clear();
     params.radius_px *= 2;  // fast motion: a wider window
     matches = matcher_.match(frame, points, &levels, params, in_view_, &projected_);
   }
