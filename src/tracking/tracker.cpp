@@ -184,18 +184,20 @@ bool Tracker::trackWithMotionModel(Frame& frame) {
     levels.push_back(last_frame_->features.level(i));
   }
   ProjectionMatchParams params;
-  params.radius_px = options_.search_radius_px;
   params.max_distance = options_.max_descriptor_distance;
   params.nn_ratio = options_.nn_ratio;
-  frame.clearMatches();
-  int matches = matcher_.match(frame, points, &levels, params, in_view_, &projected_);
-  if (matches < 2 * options_.min_tracked_points) {
+  // A pass replaces what an earlier one matched and saw in view: each landmark counts in view
+  // once per frame.
+  const auto search = [&](double radius_px) {
     frame.clearMatches();
-    in_view_.clear();  // the same landmarks again: each counts in view once per frame
+    in_view_.clear();
     projected_.clear();
-    params.radius_px *= 2;  // fast motion: a wider window
-    matches = matcher_.match(frame, points, &levels, params, in_view_, &projected_);
-  }
+    params.radius_px = radius_px;
+    return matcher_.match(frame, points, &levels, params, in_view_, &projected_);
+  };
+  int matches = search(options_.search_radius_px);
+  if (matches < 2 * options_.min_tracked_points)
+    matches = search(2.0 * options_.search_radius_px);  // fast motion: a wider window
   const int line_matches = lines_.enabled ? matchLines(frame, local_lines_) : 0;
   if (matches + line_matches < options_.min_tracked_points) return false;
   const int inliers = optimizePose(frame);  // first: it classifies the lines too
