@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <iostream>
 #include <opencv2/core.hpp>
+#include <opencv2/dnn.hpp>
 #include <vector>
 
 #include "ply_slam/io/tum_sequence.h"
@@ -66,6 +67,40 @@ void expectWalkersFound(const std::string& model, int width, int height) {
 TEST(YoloV8Seg, Model640x640) { expectWalkersFound("yolov8n-seg-640x640.onnx", 640, 640); }
 TEST(YoloV8Seg, Model480x640) { expectWalkersFound("yolov8n-seg-480x640.onnx", 640, 480); }
 TEST(YoloV8Seg, Model320x320) { expectWalkersFound("yolov8n-seg-320x320.onnx", 320, 320); }
+
+// Input size 0 (the configs' default) takes the export's own, read from the ONNX file.
+TEST(YoloV8Seg, InputSizeZeroTakesTheModelsOwn) {
+  const std::string model_path = test::sharedPath("models/yolov8n-seg-480x640.onnx");
+  PLY_SLAM_REQUIRE_SHARED(model_path);
+  YoloOptions params;
+  params.model_path = model_path;
+  params.input_width = 0;
+  params.input_height = 0;
+  const YoloV8Seg yolo(params);
+  EXPECT_NE(yolo.description().find("640x480"), std::string::npos) << yolo.description();
+}
+
+// OpenCV falls back to the CPU silently; a backend this build lacks is refused, naming what it has.
+TEST(YoloV8Seg, AnUnavailableBackendIsRefusedNamingTheAvailableOnes) {
+  const std::string model_path = test::sharedPath("models/yolov8n-seg-320x320.onnx");
+  PLY_SLAM_REQUIRE_SHARED(model_path);
+  bool has_cuda = false;
+  for (const auto& pair : cv::dnn::getAvailableBackends())
+    has_cuda = has_cuda || pair.first == cv::dnn::DNN_BACKEND_CUDA;
+  if (has_cuda) GTEST_SKIP() << "this OpenCV build has CUDA";
+  YoloOptions params;
+  params.model_path = model_path;
+  params.backend = DnnBackend::kCuda;
+  params.target = DnnTarget::kCuda;
+  try {
+    YoloV8Seg yolo(params);
+    FAIL() << "cuda/cuda accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cuda"), std::string::npos) << what;
+    EXPECT_NE(what.find("opencv/cpu"), std::string::npos) << what;
+  }
+}
 
 TEST(YoloV8Seg, MissingModelIsNamed) {
   YoloOptions params;

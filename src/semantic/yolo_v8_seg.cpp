@@ -6,8 +6,10 @@
 #include <fstream>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <utility>
 
 #include "ply_slam/semantic/onnx_input_shape.h"
+#include "ply_slam/semantic/yolo_options_yaml.h"
 
 namespace ply_slam {
 namespace {
@@ -51,9 +53,20 @@ std::vector<std::string> readClassNames(const std::string& path) {
 
 // A fixed-size export runs on any input of its area: 480x640 into a 640x480 export gives
 // boxes and masks from the wrong anchors (person IoU 0.59 instead of 0.91) without an error.
-void checkInputSize(const YoloOptions& params) {
+// A size of 0 takes the export's own.
+void resolveInputSize(YoloOptions& params) {
   const std::vector<std::int64_t> shape = readOnnxInputShape(params.model_path);
-  if (shape.size() != 4 || shape[2] <= 0 || shape[3] <= 0) return;  // dynamic: any size
+  const bool fixed = shape.size() == 4 && shape[2] > 0 && shape[3] > 0;
+  if (params.input_width == 0) {
+    if (!fixed)
+      throw std::runtime_error(params.model_path +
+                               ": the model has no fixed input size; give it (--input WxH, or "
+                               "segmentation.input_width and input_height in the config)");
+    params.input_width = static_cast<int>(shape[3]);
+    params.input_height = static_cast<int>(shape[2]);
+    return;
+  }
+  if (!fixed) return;  // dynamic: any size
   const std::int64_t height = shape[2], width = shape[3];
   if (width == params.input_width && height == params.input_height) return;
   throw std::runtime_error(params.model_path + ": the model's input size is " +
@@ -61,7 +74,62 @@ void checkInputSize(const YoloOptions& params) {
                            " (width x height), not the " + std::to_string(params.input_width) +
                            "x" + std::to_string(params.input_height) +
                            " asked for (--input WxH, or segmentation.input_width and "
-                           "input_height in the config)");
+                           "input_height in the config; 0 takes the model's own)");
+}
+
+cv::dnn::Backend dnnBackend(DnnBackend backend) {
+  switch (backend) {
+    case DnnBackend::kCuda:
+      return cv::dnn::DNN_BACKEND_CUDA;
+    case DnnBackend::kInferenceEngine:
+      return cv::dnn::DNN_BACKEND_INFERENCE_ENGINE;
+    case DnnBackend::kOpenCv:
+      break;
+  }
+  return cv::dnn::DNN_BACKEND_OPENCV;
+}
+
+cv::dnn::Target dnnTarget(DnnTarget target) {
+  switch (target) {
+    case DnnTarget::kOpenCl:
+      return cv::dnn::DNN_TARGET_OPENCL;
+    case DnnTarget::kOpenClFp16:
+      return cv::dnn::DNN_TARGET_OPENCL_FP16;
+    case DnnTarget::kCuda:
+      return cv::dnn::DNN_TARGET_CUDA;
+    case DnnTarget::kCudaFp16:
+      return cv::dnn::DNN_TARGET_CUDA_FP16;
+    case DnnTarget::kCpu:
+      break;
+  }
+  return cv::dnn::DNN_TARGET_CPU;
+}
+
+// "opencv/cpu" for a pair this config can name, "" for the others (Vulkan, Myriad, ...).
+std::string pairWord(cv::dnn::Backend b, cv::dnn::Target t) {
+  for (DnnBackend backend : {DnnBackend::kOpenCv, DnnBackend::kCuda, DnnBackend::kInferenceEngine})
+    for (DnnTarget target : {DnnTarget::kCpu, DnnTarget::kOpenCl, DnnTarget::kOpenClFp16,
+                             DnnTarget::kCuda, DnnTarget::kCudaFp16})
+      if (dnnBackend(backend) == b && dnnTarget(target) == t)
+        return std::string(dnnBackendWord(backend)) + "/" + dnnTargetWord(target);
+  return "";
+}
+
+// OpenCV falls back to the CPU without a word when a backend or target is missing: a robot with
+// a GPU would run on its CPU and never know. Refused here, naming what this build and machine have.
+void requireAvailable(const YoloOptions& params) {
+  const auto wanted = std::make_pair(dnnBackend(params.backend), dnnTarget(params.target));
+  std::string available;
+  for (const auto& pair : cv::dnn::getAvailableBackends()) {
+    if (pair == wanted) return;
+    const std::string word = pairWord(pair.first, pair.second);
+    if (!word.empty()) available += (available.empty() ? "" : ", ") + word;
+  }
+  throw std::runtime_error(std::string("segmentation: backend ") + dnnBackendWord(params.backend) +
+                           " with target " + dnnTargetWord(params.target) +
+                           " is not available in this OpenCV build on this machine (OpenCV " +
+                           CV_VERSION + " has: " + (available.empty() ? "none" : available) +
+                           "); set segmentation.backend and segmentation.target to one of them");
 }
 
 // The anchors whose best class score reaches the threshold: box (input pixels), score, class.
@@ -168,9 +236,10 @@ YoloV8Seg::YoloV8Seg(const YoloOptions& params) : params_(params) {
     throw std::runtime_error(params_.model_path + ": OpenCV cannot load the model: " + e.what());
   }
   if (net_.empty()) throw std::runtime_error(params_.model_path + ": OpenCV loaded an empty net");
-  checkInputSize(params_);
-  net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-  net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  resolveInputSize(params_);
+  requireAvailable(params_);
+  net_.setPreferableBackend(dnnBackend(params_.backend));
+  net_.setPreferableTarget(dnnTarget(params_.target));
   if (params_.class_names_path.empty())  // the usual layout: coco.names beside the model
     params_.class_names_path =
         (std::filesystem::path(params_.model_path).parent_path() / "coco.names").string();
@@ -212,6 +281,12 @@ std::vector<Instance> YoloV8Seg::segment(const RgbdImages& images) {
     instances.push_back({next_id++, class_names_[found.classes[k]], found.scores[k], mask});
   }
   return instances;
+}
+
+std::string YoloV8Seg::description() const {
+  return "YOLOv8-seg " + params_.model_path + " " + std::to_string(params_.input_width) + "x" +
+         std::to_string(params_.input_height) + ", backend " + dnnBackendWord(params_.backend) +
+         ", target " + dnnTargetWord(params_.target);
 }
 
 }  // namespace ply_slam

@@ -15,6 +15,8 @@ class Segmenter {
   // Throws std::runtime_error naming what is wrong when the frame cannot be segmented.
   virtual std::vector<Instance> segment(const RgbdImages& images) = 0;
   virtual std::string name() const = 0;
+  // What runs, for a log line at the start (a model's file, size, where it runs).
+  virtual std::string description() const { return name(); }
 };
 
 }  // namespace ply_slam

@@ -6,8 +6,12 @@
 namespace ply_slam {
 
 // Reads the `segmentation:` section (absent: the defaults, no model). Keys: model, classes (the
-// two paths) and the other members' names. Unknown keys and values out of range throw
-// ConfigError naming the file and key.
+// two paths) and the other members' names; backend and target as the words below. Unknown keys
+// and values out of range throw ConfigError naming the file and key.
 YoloOptions readYoloOptions(ConfigSection section);
+
+// The config's words for a backend / target ("opencv", "cpu", ...).
+const char* dnnBackendWord(DnnBackend backend);
+const char* dnnTargetWord(DnnTarget target);
 
 }  // namespace ply_slam

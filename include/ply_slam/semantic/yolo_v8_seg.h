@@ -15,11 +15,15 @@ namespace ply_slam {
 class YoloV8Seg : public Segmenter {
  public:
   // Throws std::runtime_error naming the file and what OpenCV said when the model or the
-  // class list cannot be loaded. Without a class list path, coco.names beside the model.
+  // class list cannot be loaded, and when the backend / target is not in this OpenCV build.
+  // Without a class list path, coco.names beside the model; without an input size, the model's.
   explicit YoloV8Seg(const YoloOptions& params);
 
   std::vector<Instance> segment(const RgbdImages& images) override;
   std::string name() const override { return "yolo"; }
+  // Model, input size, backend and target, for the log at start.
+  std::string description() const override;
+  const YoloOptions& options() const { return params_; }
   const std::vector<std::string>& classNames() const { return class_names_; }
 
  private:
