@@ -107,6 +107,26 @@ TEST(MaskCarrier, RejectsImagesOfDifferentSizes) {
   EXPECT_THROW(MaskCarrier().carry({}, texture(1), small), std::invalid_argument);
 }
 
+// Masks carried live are hundreds of ms old and grow by tens of pixels: past kLargestKernel
+// (10 px) the growth is the disc of a distance map. Without texture nothing is followed, so the
+// mask stays where it was, grown by the margin alone.
+TEST(MaskCarrier, GrowsAStaleMaskByAWideDiscWhereNothingIsFollowed) {
+  const cv::Mat blank(480, 640, CV_8UC1, cv::Scalar(128));
+  cv::Mat mask = cv::Mat::zeros(480, 640, CV_8UC1);
+  mask(cv::Rect(300, 200, 40, 80)).setTo(255);
+  MaskCarrierParams params;
+  params.margin_px = 30;
+  const auto carried = MaskCarrier(params).carry({{1, "person", 1.0f, mask}}, blank, blank);
+  ASSERT_EQ(carried.size(), 1u);
+  const cv::Mat& grown = carried[0].mask;
+  EXPECT_EQ(grown.at<uchar>(240, 339 + 30), 255);  // 30 px right of the box
+  EXPECT_EQ(grown.at<uchar>(240, 339 + 31), 0);
+  EXPECT_EQ(grown.at<uchar>(200 - 30, 320), 255);  // 30 px above
+  EXPECT_EQ(grown.at<uchar>(200 - 31, 320), 0);
+  EXPECT_EQ(grown.at<uchar>(200 - 21, 300 - 21), 255);  // the corner: 29.7 px away
+  EXPECT_EQ(grown.at<uchar>(200 - 22, 300 - 22), 0);    // 31.1 px: a disc, not a square
+}
+
 TEST(InstanceMemory, CarriesAMissedPersonOnForAFewFrames) {
   const MovingObject m = movingObject(10, 4, -3);
   const Instance person{7, "person", 0.9f, m.mask_from};

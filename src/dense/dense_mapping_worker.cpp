@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "ply_slam/common/stopwatch.h"
+#include "ply_slam/common/thread_priority.h"
 
 namespace ply_slam {
 
@@ -18,7 +19,10 @@ DenseMappingWorker::DenseMappingWorker(const DenseOptions& params, const ClassPa
       octree_(params.octree_resolution, params.colour_mode, palette, params.octree_occupancy,
               params.ray_margin) {
   if (params.octree_filter) map_.keepOnlyOccupied(&octree_);
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    setThisThreadsNice(kBackgroundNice);  // maps to look at and plan on may lag; frames may not
+    run();
+  });
 }
 
 DenseMappingWorker::~DenseMappingWorker() { finish(); }

@@ -1,7 +1,11 @@
 #include "ply_slam/semantic/live_segmenter.h"
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include "ply_slam/common/stopwatch.h"
+#include "ply_slam/common/thread_priority.h"
 
 namespace ply_slam {
 namespace {
@@ -14,10 +18,15 @@ cv::Mat toGray(const cv::Mat& bgr) {
 
 }  // namespace
 
-LiveSegmenter::LiveSegmenter(std::unique_ptr<Segmenter> segmenter, MaskCarrierParams carrier)
-    : segmenter_(std::move(segmenter)), carrier_(carrier) {
+LiveSegmenter::LiveSegmenter(std::unique_ptr<Segmenter> segmenter, int opencv_threads,
+                             MaskCarrierParams carrier)
+    : segmenter_(std::move(segmenter)), opencv_threads_(opencv_threads), carrier_(carrier) {
   if (!segmenter_) throw std::invalid_argument("LiveSegmenter needs a segmenter");
-  worker_ = std::thread([this] { run(); });
+  if (opencv_threads > 0) cv::setNumThreads(opencv_threads);
+  worker_ = std::thread([this] {
+    setThisThreadsNice(kBackgroundNice);
+    run();
+  });
 }
 
 LiveSegmenter::~LiveSegmenter() {
@@ -53,10 +62,10 @@ void LiveSegmenter::run() {
     }
     auto result = std::make_shared<Result>();
     result->stamp = images.stamp;
-    result->gray = toGray(images.rgb);
     std::string error;
+    const Stopwatch watch;
     try {
-      result->instances = segmenter_->segment(images);
+      result->source = carrier_.prepare(segmenter_->segment(images), toGray(images.rgb));
     } catch (const std::exception& e) {
       error = e.what();
     }
@@ -67,6 +76,7 @@ void LiveSegmenter::run() {
     }
     latest_ = std::move(result);
     ++segmented_;
+    segment_ms_sum_ += watch.elapsedMs();
   }
 }
 
@@ -76,11 +86,10 @@ std::vector<Instance> LiveSegmenter::instancesFor(const RgbdImages& current) {
     std::lock_guard<std::mutex> lock(mutex_);
     latest = latest_;
   }
-  if (!latest || current.rgb.empty() || current.rgb.size() != latest->gray.size()) return {};
-  std::vector<Instance> instances =
-      current.stamp == latest->stamp
-          ? latest->instances
-          : carrier_.carry(latest->instances, latest->gray, toGray(current.rgb));
+  if (!latest || current.rgb.empty() || current.rgb.size() != latest->source.size) return {};
+  std::vector<Instance> instances = current.stamp == latest->stamp
+                                        ? latest->source.instances
+                                        : carrier_.carry(latest->source, toGray(current.rgb));
   std::lock_guard<std::mutex> lock(mutex_);
   age_sum_ += current.stamp - latest->stamp;
   ++age_count_;
@@ -95,6 +104,18 @@ double LiveSegmenter::meanAgeSeconds() const {
 long LiveSegmenter::segmentedFrames() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return segmented_;
+}
+
+std::string LiveSegmenter::description() const {
+  return segmenter_->description() + ", live on a worker thread at nice +" +
+         std::to_string(kBackgroundNice) + ", OpenCV threads " +
+         (opencv_threads_ > 0 ? std::to_string(opencv_threads_) : "default") + " (" +
+         std::to_string(cv::getNumThreads()) + ")";
+}
+
+double LiveSegmenter::meanSegmentMs() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return segmented_ > 0 ? segment_ms_sum_ / segmented_ : 0.0;
 }
 
 std::string LiveSegmenter::lastError() const {

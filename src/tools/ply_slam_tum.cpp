@@ -598,7 +598,9 @@ TumRun::TumRun(const Options& options)
   // Offline, every frame is segmented before it is tracked: runs are reproducible.
   segmenter_ = options.segmentation.make(config_.segmentation, sequence_.folder());
   if (!segmenter_) config_.dynamic.mode = modeWithoutSegmenter(config_.dynamic.mode);
-  if (options.live) live_ = std::make_unique<LiveSegmenter>(std::move(segmenter_));
+  if (options.live)
+    live_ =
+        std::make_unique<LiveSegmenter>(std::move(segmenter_), config_.segmentation.live_threads);
   walker_masks_ = groundTruthMasks(options, sequence_);
   segmenter_is_ground_truth_ =
       walker_masks_ && !options.live && options.segmentation.kind == "masks" &&

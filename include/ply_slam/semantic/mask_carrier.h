@@ -18,11 +18,25 @@ struct MaskCarrierParams {
 // carried mask covers the object rather than trailing it.
 class MaskCarrier {
  public:
+  // Instances made ready to be carried from the frame they were segmented in: that frame's
+  // pyramid and each instance's corners, found once however many frames they are carried to.
+  struct Source {
+    std::vector<Instance> instances;
+    cv::Size size;  // of the frame
+    std::vector<cv::Mat> pyramid;
+    std::vector<cv::Rect> boxes;                    // each mask's bounding box
+    std::vector<std::vector<cv::Point2f>> corners;  // well inside each mask
+  };
   explicit MaskCarrier(const MaskCarrierParams& params = {}) : params_(params) {}
 
-  // from_gray / to_gray: 8UC1 images of one size; instances' masks of that size.
+  // from_gray: 8UC1; the instances' masks of its size.
+  Source prepare(const std::vector<Instance>& instances, const cv::Mat& from_gray) const;
+  // to_gray: 8UC1 of the source frame's size.
+  std::vector<Instance> carry(const Source& source, const cv::Mat& to_gray) const;
   std::vector<Instance> carry(const std::vector<Instance>& instances, const cv::Mat& from_gray,
-                              const cv::Mat& to_gray) const;
+                              const cv::Mat& to_gray) const {
+    return carry(prepare(instances, from_gray), to_gray);
+  }
 
  private:
   MaskCarrierParams params_;
