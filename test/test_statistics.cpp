@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "ply_slam/common/latency_window.h"
 #include "ply_slam/common/statistics.h"
 
 namespace ply_slam {
@@ -37,4 +38,15 @@ TEST(Statistics, UpperMedianAndKthSmallestAreValuesOfTheSample) {
 }
 
 }  // namespace
+// A node that runs for hours keeps its percentiles over the recent window, its maximum over all.
+TEST(LatencyWindow, PercentilesOverTheRecentSamplesMaximumOverAll) {
+  LatencyWindow window(4);
+  EXPECT_EQ(window.percentile(0.5), 0.0);
+  for (double s : {9.0, 1.0, 2.0, 3.0, 4.0}) window.add(s);
+  EXPECT_EQ(window.count(), 5u);
+  EXPECT_EQ(window.max(), 9.0);
+  EXPECT_DOUBLE_EQ(window.percentile(0.5), 2.5);  // of 1, 2, 3, 4: the 9 has left the window
+  EXPECT_DOUBLE_EQ(window.percentile(1.0), 4.0);
+}
+
 }  // namespace ply_slam

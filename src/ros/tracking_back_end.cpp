@@ -9,7 +9,8 @@ TrackingBackEnd TrackingBackEnd::fromOptions(const TrackingNodeOptions& options)
   TrackingBackEnd back_end;
   if (!options.config.segmentation.model_path.empty())
     back_end.segmenter =
-        std::make_unique<LiveSegmenter>(std::make_unique<YoloV8Seg>(options.config.segmentation));
+        std::make_unique<LiveSegmenter>(std::make_unique<YoloV8Seg>(options.config.segmentation),
+                                        options.config.segmentation.live_threads);
   const bool segmented = back_end.segmenter != nullptr;
   back_end.make_system = [options, segmented](const PinholeCamera& camera, bool load_map) {
     SystemConfig config = options.config;

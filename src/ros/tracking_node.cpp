@@ -38,11 +38,7 @@ TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNode
       decoder_(options_.depth_16u_scale),
       unpaired_rgb_(2 * static_cast<size_t>(options_.sync_queue_size)),
       unpaired_depth_(2 * static_cast<size_t>(options_.sync_queue_size)) {
-  if (back_end_.segmenter)
-    ROS_INFO_STREAM("segmentation: YOLOv8-seg " << options_.config.segmentation.model_path
-                                                << ", live");
-  else
-    ROS_INFO("segmentation: none (config segmentation.model is empty)");
+  reportSegmenter();
 
   pose_pub_ = pnh_.advertise<geometry_msgs::PoseStamped>("pose", 10);
   path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 1, true);
@@ -147,7 +143,7 @@ void TrackingNode::onImages(const sensor_msgs::ImageConstPtr& rgb,
   last_paired_rgb_stamp_ = std::max(last_paired_rgb_stamp_, rgb->header.stamp);
   last_paired_depth_stamp_ = std::max(last_paired_depth_stamp_, depth->header.stamp);
   ++synchronised_;
-  enqueue({rgb, depth, nullptr});
+  enqueue({rgb, depth, nullptr, ros::WallTime::now()});
 }
 
 void TrackingNode::reportUnpaired(const std::string& what, double stamp) {
@@ -189,7 +185,7 @@ void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
 bool TrackingNode::onResendMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.push_front({nullptr, nullptr, nullptr});
+    queue_.push_front({nullptr, nullptr, nullptr, {}});
   }
   queue_cv_.notify_one();
   response.success = true;
@@ -266,29 +262,38 @@ std::optional<TrackingNode::Answer> TrackingNode::betweenFrames(std::function<An
   };
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    queue_.push_front({nullptr, nullptr, run});
+    queue_.push_front({nullptr, nullptr, run, {}});
   }
   queue_cv_.notify_one();
   if (answered.wait_for(timeout) != std::future_status::ready) return std::nullopt;
   return answered.get();
 }
 
-// Frames wait here for the worker; when it falls this far behind the oldest frame goes (a live
-// camera cannot wait).
+// Frames wait here for the worker, at most ~frame_max_age: when it falls behind, the oldest go
+// (a live camera cannot wait, and a pose that late is of no use to the robot).
 void TrackingNode::enqueue(Job job) {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
-    const auto frames =
-        std::count_if(queue_.begin(), queue_.end(), [](const Job& j) { return j.rgb != nullptr; });
-    if (static_cast<size_t>(frames) >= options_.frame_queue_size) {
-      queue_.erase(std::find_if(queue_.begin(), queue_.end(),
-                                [](const Job& j) { return j.rgb != nullptr; }));
-      ++behind_dropped_;
-      bad_input_.report("behind", "tracking is behind; dropped the oldest waiting frame");
-    }
     queue_.push_back(std::move(job));
+    dropStaleFrames(ros::WallTime::now());
   }
   queue_cv_.notify_one();
+}
+
+void TrackingNode::dropStaleFrames(ros::WallTime now) {
+  if (options_.frame_max_age <= 0) return;
+  for (auto job = queue_.begin(); job != queue_.end();) {
+    if (!job->rgb || (now - job->arrival).toSec() <= options_.frame_max_age) {
+      ++job;
+      continue;
+    }
+    job = queue_.erase(job);
+    ++behind_dropped_;
+    bad_input_.report("behind",
+                      "tracking is behind; dropped the oldest waiting frame (older "
+                      "than ~frame_max_age " +
+                          std::to_string(options_.frame_max_age) + " s)");
+  }
 }
 
 void TrackingNode::work() {
@@ -304,6 +309,7 @@ void TrackingNode::work() {
                (system_ && mapper_updates_ && mapper_updates_->ready());
       });
       if (stopping_) return;  // shutting down: frames still waiting are not tracked
+      dropStaleFrames(ros::WallTime::now());
       idle = idle || queue_.empty();
       if (!idle) {
         job = std::move(queue_.front());
@@ -321,7 +327,7 @@ void TrackingNode::work() {
       } else if (job.task)
         job.task();
       else if (job.rgb)
-        track(*job.rgb, *job.depth);
+        track(*job.rgb, *job.depth, job.arrival);
       else
         publishSnapshot();
     } catch (const BadRgbdMessage& e) {
@@ -369,7 +375,7 @@ void TrackingNode::startSystem(const sensor_msgs::CameraInfo* info) {
   publishSnapshot();  // mapping_node shows and keeps the loaded map
 }
 
-void TrackingNode::track(const Image& rgb, const Image& depth) {
+void TrackingNode::track(const Image& rgb, const Image& depth, ros::WallTime arrival) {
   sensor_msgs::CameraInfoConstPtr info;
   if (options_.use_camera_info) {
     std::lock_guard<std::mutex> lock(info_mutex_);
@@ -394,7 +400,7 @@ void TrackingNode::track(const Image& rgb, const Image& depth) {
     ++lost_;
   keyframes_held_back_ += result.tracking.keyframe_held_back;
   warnWhileHeldBack(images.stamp, result.tracking.keyframe_held_back);
-  publish(rgb, images, instances, result);
+  publish(rgb, images, instances, result, arrival);
   publishJobs(rgb.header.stamp);
 }
 
@@ -474,7 +480,8 @@ void TrackingNode::publishJobs(const ros::Time& stamp) {
 }
 
 void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
-                           const std::vector<Instance>& instances, const FrameResult& result) {
+                           const std::vector<Instance>& instances, const FrameResult& result,
+                           ros::WallTime arrival) {
   std_msgs::Header header;
   header.stamp = rgb.header.stamp;
   header.frame_id = options_.world_frame;
@@ -483,6 +490,8 @@ void TrackingNode::publish(const Image& rgb, const RgbdImages& images,
     pose.header = header;
     pose.pose = toPoseMsg(result.tracking.T_cw.inverse());
     pose_pub_.publish(pose);
+    lag_from_arrival_.add((ros::WallTime::now() - arrival).toSec());
+    lag_from_stamp_.add((ros::Time::now() - rgb.header.stamp).toSec());
     addToPath(pose, result.tracking.T_cw.inverse());
   }
   sendPath();
@@ -556,6 +565,15 @@ void TrackingNode::publishSnapshot() {
                                       << snapshot.trajectory.size() << " poses");
 }
 
+void TrackingNode::reportSegmenter() const {
+  if (back_end_.segmenter)
+    ROS_INFO_STREAM("segmentation: " << back_end_.segmenter->description());
+  else
+    ROS_WARN(
+        "segmentation: none (config segmentation.model is empty; model:=ONNX on the launch "
+        "files): moving people are told from the scene by geometry alone");
+}
+
 void TrackingNode::publishStats() {
   mapping_backlog_ = system_ ? system_->mappingBacklog() : 0;
   std::ostringstream s;
@@ -568,6 +586,16 @@ void TrackingNode::publishStats() {
     << " updates_lost=" << (mapper_updates_ ? mapper_updates_->lost() : 0)
     << " follow_cpu_ms_max=" << longest_follow_cpu_ms_ << " dropped_behind=" << behind_dropped_
     << " skipped_bad=" << bad_input_.total() << " median_ms=" << median(total_ms_, 0.0);
+  // Latencies of the posed frames, ms: from the pair's arrival, and from the image stamp.
+  for (const auto& [name, lag] :
+       {std::pair<const char*, const LatencyWindow*>{"lag_arrival", &lag_from_arrival_},
+        {"lag_stamp", &lag_from_stamp_}})
+    s << " " << name << "_ms_p50=" << 1e3 * lag->percentile(0.5) << " " << name
+      << "_ms_p95=" << 1e3 * lag->percentile(0.95) << " " << name << "_ms_max=" << 1e3 * lag->max();
+  if (back_end_.segmenter)
+    s << " segmented=" << back_end_.segmenter->segmentedFrames()
+      << " segment_ms_mean=" << back_end_.segmenter->meanSegmentMs()
+      << " mask_age_ms_mean=" << 1e3 * back_end_.segmenter->meanAgeSeconds();
   const std::string kinds = bad_input_.summary();
   if (!kinds.empty()) s << " " << kinds;
   std_msgs::String msg;

@@ -22,9 +22,8 @@ TrackingNodeOptions trackingNodeOptionsFromParams(const ros::NodeHandle& pnh) {
   readParam(pnh, "sync_slop", &o.sync_slop);
   readParam(pnh, "sync_min_period", &o.sync_min_period);
   readParam(pnh, "sync_flush_after", &o.sync_flush_after);
-  int frame_queue_size = static_cast<int>(o.frame_queue_size);
-  readParam(pnh, "frame_queue_size", &frame_queue_size);
-  o.frame_queue_size = static_cast<size_t>(std::max(1, frame_queue_size));
+  readParam(pnh, "frame_max_age", &o.frame_max_age);
+  if (!(o.frame_max_age >= 0)) badParam("frame_max_age", "must be >= 0 s (0: no frame dropped)");
   readParam(pnh, "world_frame", &o.world_frame);
   readParam(pnh, "publish_images", &o.publish_images);
   readPeriod(pnh, "path_period", &o.path_period);

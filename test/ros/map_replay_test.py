@@ -124,7 +124,7 @@ class MapReplay(unittest.TestCase):
         tf2_ros.TransformListener(tf_buffer)
         nodes = subprocess.Popen(["roslaunch", "ply_slam", "tum_bag.launch", "bag:=" + bag,
                                   "map:=" + saved, "odom_frame:=odom", "rviz:=false",
-                                  "output:=log", "delay:=5"] +
+                                  "output:=log", "delay:=5", "frame_max_age:=0"] +
                                  (["mapping_apart:=true", "localisation_only:=false"] if apart
                                   else ["mapping_apart:=false"]))
         self.addCleanup(lambda: (nodes.send_signal(signal.SIGINT), nodes.wait(30)))

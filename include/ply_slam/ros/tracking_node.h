@@ -24,6 +24,7 @@
 #include <optional>
 #include <thread>
 
+#include "ply_slam/common/latency_window.h"
 #include "ply_slam/ros/bad_input_log.h"
 #include "ply_slam/ros/mapper_update_feed.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
@@ -58,6 +59,7 @@ class TrackingNode {
   struct Job {
     sensor_msgs::ImageConstPtr rgb, depth;  // null: send the whole map (~resend_map)
     std::function<void()> task;             // set: run this between two frames instead
+    ros::WallTime arrival;                  // a frame's: when the pair was complete
   };
 
   void onImages(const sensor_msgs::ImageConstPtr& rgb, const sensor_msgs::ImageConstPtr& depth);
@@ -81,15 +83,20 @@ class TrackingNode {
   // ~mapping_apart, at construction: mapping_node's map (mapper_map_) when it is not empty.
   void askMapperForItsMap();
   void enqueue(Job job);
+  // Frames that waited longer than ~frame_max_age, from the front (the oldest) of queue_ (under
+  // queue_mutex_): dropped, counted and reported.
+  void dropStaleFrames(ros::WallTime now);
   void publishSnapshot();
   void publishMapped(const std::vector<MappedKeyFrame>& mapped);
   void work();
-  void track(const Image& rgb, const Image& depth);
+  void track(const Image& rgb, const Image& depth, ros::WallTime arrival);
   // The System from the back-end, with camera_info's intrinsics when `info` is calibrated; a
   // System that cannot be made (e.g. ~map does not load) stops the node.
   void startSystem(const sensor_msgs::CameraInfo* info);
   void publish(const Image& rgb, const RgbdImages& images, const std::vector<Instance>& instances,
-               const FrameResult& result);
+               const FrameResult& result, ros::WallTime arrival);
+  // The segmenter the node has, said once at the start (a warning without one).
+  void reportSegmenter() const;
   void publishStats();
   // ~mapping_apart: the mapping side's updates followed (true when any), the tracker's keyframes
   // sent.
@@ -163,7 +170,10 @@ class TrackingNode {
   std::atomic<size_t> rgb_received_{0}, depth_received_{0}, synchronised_{0};
   std::atomic<size_t> flushed_{0}, behind_dropped_{0}, tracked_{0}, lost_{0}, keyframes_{0},
       updates_{0}, loops_{0}, updates_followed_{0}, keyframes_held_back_{0};
-  std::vector<double> total_ms_;           // worker thread only
+  std::vector<double> total_ms_;  // worker thread only
+  // Worker thread only: each posed frame's arrival -> ~pose (wall clock) and image stamp ->
+  // ~pose (ROS clock: a live camera's, or a bag's with use_sim_time).
+  LatencyWindow lag_from_arrival_, lag_from_stamp_;
   std::optional<double> held_back_since_;  // worker thread only: frame stamp (s)
   static constexpr double kHeldBackWarning_s = 3.0;
 };

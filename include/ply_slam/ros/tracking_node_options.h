@@ -26,7 +26,9 @@ struct TrackingNodeOptions {
   double sync_min_period = 0.0;
   // s of quiet after which the newest unpaired rgb + depth are tracked as a pair (0 = never).
   double sync_flush_after = 0.5;
-  size_t frame_queue_size = 100;  // frames waiting for the tracker at most, >= 1
+  // s a frame may wait for the tracker: older ones are dropped, the oldest first (a live camera
+  // cannot wait); 0 = every frame waits (a bag replayed faster than it was recorded).
+  double frame_max_age = 0.3;
   std::string world_frame = "map";
   bool publish_images = true;
   // s (wall clock) between two ~path messages at least: the whole path is in each, up to
