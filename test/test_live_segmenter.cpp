@@ -107,14 +107,14 @@ TEST(MaskCarrier, RejectsImagesOfDifferentSizes) {
   EXPECT_THROW(MaskCarrier().carry({}, texture(1), small), std::invalid_argument);
 }
 
-// Masks carried live are hundreds of ms old and grow by tens of pixels: past kLargestKernel
-// (10 px) the growth is the disc of a distance map. Without texture nothing is followed, so the
-// mask stays where it was, grown by the margin alone.
+// Masks carried live are hundreds of ms old and grow by tens of pixels: past 10 px
+// (liveMaskCarrierParams) the growth is the disc of a distance map. Without texture nothing is
+// followed, so the mask stays where it was, grown by the margin alone.
 TEST(MaskCarrier, GrowsAStaleMaskByAWideDiscWhereNothingIsFollowed) {
   const cv::Mat blank(480, 640, CV_8UC1, cv::Scalar(128));
   cv::Mat mask = cv::Mat::zeros(480, 640, CV_8UC1);
   mask(cv::Rect(300, 200, 40, 80)).setTo(255);
-  MaskCarrierParams params;
+  MaskCarrierParams params = liveMaskCarrierParams();
   params.margin_px = 30;
   const auto carried = MaskCarrier(params).carry({{1, "person", 1.0f, mask}}, blank, blank);
   ASSERT_EQ(carried.size(), 1u);

@@ -12,16 +12,12 @@ namespace ply_slam {
 namespace {
 
 constexpr int kWindow = 21, kLevels = 3;
-// Dilation by OpenCV's elliptic kernel costs O(radius) per pixel: 0.2 ms at 8 px, 7.6 ms at 40
-// px on a person's box (one thread). Live, masks a few hundred ms old grow by tens of pixels, and
-// a distance map (0.4-0.7 ms whatever the radius) takes over from 10 px, where the two cost the
-// same. Offline the radius rarely exceeds 10 (4 px margin plus the flow's spread frame to frame).
-constexpr int kLargestKernel = 10;
 
 // The mask shifted by (dx, dy) whole pixels and dilated by `radius`. Both only touch the
 // mask's bounding box and its surroundings: full-image morphology per instance and frame
 // cost more than the tracking itself.
-cv::Mat shiftedAndDilated(const cv::Mat& mask, const cv::Rect& box, int dx, int dy, int radius) {
+cv::Mat shiftedAndDilated(const cv::Mat& mask, const cv::Rect& box, int dx, int dy, int radius,
+                          int largest_kernel) {
   cv::Mat out = cv::Mat::zeros(mask.size(), CV_8UC1);
   const cv::Rect image(0, 0, mask.cols, mask.rows);
   const cv::Rect to = (box + cv::Point(dx, dy)) & image;
@@ -31,7 +27,7 @@ cv::Mat shiftedAndDilated(const cv::Mat& mask, const cv::Rect& box, int dx, int 
   const cv::Rect around =
       cv::Rect(to.x - radius, to.y - radius, to.width + 2 * radius, to.height + 2 * radius) & image;
   cv::Mat grown;
-  if (radius <= kLargestKernel) {
+  if (largest_kernel <= 0 || radius <= largest_kernel) {
     cv::dilate(
         out(around), grown,
         cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
@@ -109,7 +105,8 @@ std::vector<Instance> MaskCarrier::carry(const Source& source, const cv::Mat& to
         }
     }
     if (dx.size() < 3) {  // nothing to follow: where it was, a little wider
-      moved.mask = shiftedAndDilated(instance.mask, box, 0, 0, params_.margin_px);
+      moved.mask =
+          shiftedAndDilated(instance.mask, box, 0, 0, params_.margin_px, params_.largest_kernel_px);
       carried.push_back(moved);
       continue;
     }
@@ -117,8 +114,8 @@ std::vector<Instance> MaskCarrier::carry(const Source& source, const cv::Mat& to
     std::vector<double> deviation;
     for (size_t i = 0; i < dx.size(); ++i) deviation.push_back(std::hypot(dx[i] - mx, dy[i] - my));
     const int spread = static_cast<int>(std::ceil(upperMedian(deviation)));
-    moved.mask =
-        shiftedAndDilated(instance.mask, box, cvRound(mx), cvRound(my), params_.margin_px + spread);
+    moved.mask = shiftedAndDilated(instance.mask, box, cvRound(mx), cvRound(my),
+                                   params_.margin_px + spread, params_.largest_kernel_px);
     carried.push_back(moved);
   }
   return carried;

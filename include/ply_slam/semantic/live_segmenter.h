@@ -23,7 +23,7 @@ class LiveSegmenter {
   // opencv_threads > 0: cv::setNumThreads(opencv_threads) for the whole process (the network's
   // forward pass is OpenCV's only long parallel loop); 0 leaves OpenCV's default, every core.
   explicit LiveSegmenter(std::unique_ptr<Segmenter> segmenter, int opencv_threads = 0,
-                         MaskCarrierParams carrier = {});
+                         MaskCarrierParams carrier = liveMaskCarrierParams());
   ~LiveSegmenter();
   LiveSegmenter(const LiveSegmenter&) = delete;
   LiveSegmenter& operator=(const LiveSegmenter&) = delete;
