@@ -21,6 +21,8 @@ PLY_SLAM_PACKAGES=(
   python3-geometry-msgs python3-tf2-ros python3-std-msgs python3-nav-msgs python3-opencv python3-numpy python3-yaml
   rviz
   libpcl-dev liboctomap-dev nlohmann-json3-dev
+  # scripts/yolo_onnx_for_opencv46.py and its test (test/python)
+  python3-onnx
 )
 
 ply_slam_install_packages() {
