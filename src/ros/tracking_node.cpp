@@ -589,9 +589,11 @@ void TrackingNode::publishStats() {
   // Latencies of the posed frames, ms: from the pair's arrival, and from the image stamp.
   for (const auto& [name, lag] :
        {std::pair<const char*, const LatencyWindow*>{"lag_arrival", &lag_from_arrival_},
-        {"lag_stamp", &lag_from_stamp_}})
-    s << " " << name << "_ms_p50=" << 1e3 * lag->percentile(0.5) << " " << name
-      << "_ms_p95=" << 1e3 * lag->percentile(0.95) << " " << name << "_ms_max=" << 1e3 * lag->max();
+        {"lag_stamp", &lag_from_stamp_}}) {
+    const std::vector<double> p = lag->percentiles({0.5, 0.95});
+    s << " " << name << "_ms_p50=" << 1e3 * p[0] << " " << name << "_ms_p95=" << 1e3 * p[1] << " "
+      << name << "_ms_max=" << 1e3 * lag->max();
+  }
   if (back_end_.segmenter)
     s << " segmented=" << back_end_.segmenter->segmentedFrames()
       << " segment_ms_mean=" << back_end_.segmenter->meanSegmentMs()

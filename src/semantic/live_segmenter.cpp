@@ -20,7 +20,7 @@ cv::Mat toGray(const cv::Mat& bgr) {
 
 LiveSegmenter::LiveSegmenter(std::unique_ptr<Segmenter> segmenter, int opencv_threads,
                              MaskCarrierParams carrier)
-    : segmenter_(std::move(segmenter)), opencv_threads_(opencv_threads), carrier_(carrier) {
+    : segmenter_(std::move(segmenter)), carrier_(carrier) {
   if (!segmenter_) throw std::invalid_argument("LiveSegmenter needs a segmenter");
   if (opencv_threads > 0) cv::setNumThreads(opencv_threads);
   worker_ = std::thread([this] {
@@ -109,8 +109,7 @@ long LiveSegmenter::segmentedFrames() const {
 std::string LiveSegmenter::description() const {
   return segmenter_->description() + ", live on a worker thread at nice +" +
          std::to_string(kBackgroundNice) + ", OpenCV threads " +
-         (opencv_threads_ > 0 ? std::to_string(opencv_threads_) : "default") + " (" +
-         std::to_string(cv::getNumThreads()) + ")";
+         std::to_string(cv::getNumThreads());
 }
 
 double LiveSegmenter::meanSegmentMs() const {

@@ -77,40 +77,30 @@ void resolveInputSize(YoloOptions& params) {
                            "input_height in the config; 0 takes the model's own)");
 }
 
-cv::dnn::Backend dnnBackend(DnnBackend backend) {
-  switch (backend) {
-    case DnnBackend::kCuda:
-      return cv::dnn::DNN_BACKEND_CUDA;
-    case DnnBackend::kInferenceEngine:
-      return cv::dnn::DNN_BACKEND_INFERENCE_ENGINE;
-    case DnnBackend::kOpenCv:
-      break;
-  }
-  return cv::dnn::DNN_BACKEND_OPENCV;
-}
+// Our config's backends and targets and OpenCV's for them: one table each, read both ways.
+constexpr std::pair<DnnBackend, cv::dnn::Backend> kBackends[] = {
+    {DnnBackend::kOpenCv, cv::dnn::DNN_BACKEND_OPENCV},
+    {DnnBackend::kCuda, cv::dnn::DNN_BACKEND_CUDA},
+    {DnnBackend::kInferenceEngine, cv::dnn::DNN_BACKEND_INFERENCE_ENGINE}};
+constexpr std::pair<DnnTarget, cv::dnn::Target> kTargets[] = {
+    {DnnTarget::kCpu, cv::dnn::DNN_TARGET_CPU},
+    {DnnTarget::kOpenCl, cv::dnn::DNN_TARGET_OPENCL},
+    {DnnTarget::kOpenClFp16, cv::dnn::DNN_TARGET_OPENCL_FP16},
+    {DnnTarget::kCuda, cv::dnn::DNN_TARGET_CUDA},
+    {DnnTarget::kCudaFp16, cv::dnn::DNN_TARGET_CUDA_FP16}};
 
-cv::dnn::Target dnnTarget(DnnTarget target) {
-  switch (target) {
-    case DnnTarget::kOpenCl:
-      return cv::dnn::DNN_TARGET_OPENCL;
-    case DnnTarget::kOpenClFp16:
-      return cv::dnn::DNN_TARGET_OPENCL_FP16;
-    case DnnTarget::kCuda:
-      return cv::dnn::DNN_TARGET_CUDA;
-    case DnnTarget::kCudaFp16:
-      return cv::dnn::DNN_TARGET_CUDA_FP16;
-    case DnnTarget::kCpu:
-      break;
-  }
-  return cv::dnn::DNN_TARGET_CPU;
+template <typename Ours, typename Theirs, size_t N>
+Theirs openCvOf(const std::pair<Ours, Theirs> (&table)[N], Ours ours) {
+  for (const auto& [o, theirs] : table)
+    if (o == ours) return theirs;
+  return table[0].second;
 }
 
 // "opencv/cpu" for a pair this config can name, "" for the others (Vulkan, Myriad, ...).
 std::string pairWord(cv::dnn::Backend b, cv::dnn::Target t) {
-  for (DnnBackend backend : {DnnBackend::kOpenCv, DnnBackend::kCuda, DnnBackend::kInferenceEngine})
-    for (DnnTarget target : {DnnTarget::kCpu, DnnTarget::kOpenCl, DnnTarget::kOpenClFp16,
-                             DnnTarget::kCuda, DnnTarget::kCudaFp16})
-      if (dnnBackend(backend) == b && dnnTarget(target) == t)
+  for (const auto& [backend, cv_backend] : kBackends)
+    for (const auto& [target, cv_target] : kTargets)
+      if (cv_backend == b && cv_target == t)
         return std::string(dnnBackendWord(backend)) + "/" + dnnTargetWord(target);
   return "";
 }
@@ -118,7 +108,8 @@ std::string pairWord(cv::dnn::Backend b, cv::dnn::Target t) {
 // OpenCV falls back to the CPU without a word when a backend or target is missing: a robot with
 // a GPU would run on its CPU and never know. Refused here, naming what this build and machine have.
 void requireAvailable(const YoloOptions& params) {
-  const auto wanted = std::make_pair(dnnBackend(params.backend), dnnTarget(params.target));
+  const auto wanted =
+      std::make_pair(openCvOf(kBackends, params.backend), openCvOf(kTargets, params.target));
   std::string available;
   for (const auto& pair : cv::dnn::getAvailableBackends()) {
     if (pair == wanted) return;
@@ -238,8 +229,8 @@ YoloV8Seg::YoloV8Seg(const YoloOptions& params) : params_(params) {
   if (net_.empty()) throw std::runtime_error(params_.model_path + ": OpenCV loaded an empty net");
   resolveInputSize(params_);
   requireAvailable(params_);
-  net_.setPreferableBackend(dnnBackend(params_.backend));
-  net_.setPreferableTarget(dnnTarget(params_.target));
+  net_.setPreferableBackend(openCvOf(kBackends, params_.backend));
+  net_.setPreferableTarget(openCvOf(kTargets, params_.target));
   if (params_.class_names_path.empty())  // the usual layout: coco.names beside the model
     params_.class_names_path =
         (std::filesystem::path(params_.model_path).parent_path() / "coco.names").string();

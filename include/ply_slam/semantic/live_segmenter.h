@@ -53,7 +53,6 @@ class LiveSegmenter {
   };
 
   std::unique_ptr<Segmenter> segmenter_;
-  int opencv_threads_;
   MaskCarrier carrier_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -23,7 +23,6 @@ class YoloV8Seg : public Segmenter {
   std::string name() const override { return "yolo"; }
   // Model, input size, backend and target, for the log at start.
   std::string description() const override;
-  const YoloOptions& options() const { return params_; }
   const std::vector<std::string>& classNames() const { return class_names_; }
 
  private:
