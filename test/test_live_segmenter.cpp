@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "ply_slam/semantic/instance_memory.h"
+#include "ply_slam/semantic/lagged_segmenter.h"
 #include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/semantic/mask_carrier.h"
 
@@ -230,4 +231,72 @@ TEST(LiveSegmenter, AFrameTheSegmenterRejectsKeepsThePreviousResult) {
   EXPECT_EQ(live.lastError(), "negative stamp");
   EXPECT_EQ(live.segmentedFrames(), 1);
   EXPECT_EQ(live.instancesFor(frame(1.0)).size(), 1u);
+}
+
+namespace {
+
+// An ellipse of its own texture moving 4 px right per frame over a still background; its
+// segmenter records which frames it was asked for and returns the object's true mask there.
+struct MovingScene {
+  cv::Mat background = texture(1), object = texture(2), mask0;
+  MovingScene() {
+    mask0 = cv::Mat::zeros(480, 640, CV_8UC1);
+    cv::ellipse(mask0, {200, 240}, {60, 120}, 0, 0, 360, 255, cv::FILLED);
+  }
+  cv::Mat maskAt(int k) const { return shifted(mask0, 4.0 * k, 0) > 127; }
+  RgbdImages frameAt(int k) const {
+    cv::Mat gray = background.clone();
+    shifted(object, 4.0 * k, 0).copyTo(gray, maskAt(k));
+    RgbdImages images;
+    images.stamp = k / 30.0;
+    cv::cvtColor(gray, images.rgb, cv::COLOR_GRAY2BGR);
+    images.depth = cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.0f));
+    return images;
+  }
+};
+
+class RecordingSegmenter : public Segmenter {
+ public:
+  RecordingSegmenter(const MovingScene& scene, std::vector<int>& asked)
+      : scene_(scene), asked_(asked) {}
+  std::vector<Instance> segment(const RgbdImages& images) override {
+    const int k = cvRound(images.stamp * 30.0);
+    asked_.push_back(k);
+    return {{k, "person", 0.9f, scene_.maskAt(k)}};
+  }
+  std::string name() const override { return "recording"; }
+
+ private:
+  const MovingScene& scene_;
+  std::vector<int>& asked_;
+};
+
+}  // namespace
+
+TEST(LaggedSegmenter, SegmentsEveryLagthFrameAndGivesItLagFramesLaterCarried) {
+  const MovingScene scene;
+  std::vector<int> asked;
+  constexpr int kLag = 4;
+  LaggedSegmenter lagged(std::make_unique<RecordingSegmenter>(scene, asked), kLag);
+  for (int k = 0; k < 14; ++k) {
+    const std::vector<Instance> instances = lagged.segment(scene.frameAt(k));
+    if (k < kLag) {  // the first pass is still running
+      EXPECT_TRUE(instances.empty()) << "frame " << k;
+      continue;
+    }
+    ASSERT_EQ(instances.size(), 1u) << "frame " << k;
+    // The newest pass that is done: started at the last multiple of lag before this one.
+    EXPECT_EQ(instances[0].id, (k / kLag - 1) * kLag) << "frame " << k;
+    // Carried onto the object where it is now (it moved 16-28 px since), not left behind.
+    EXPECT_GT(share(scene.maskAt(k), instances[0].mask), 0.97) << "frame " << k;
+    EXPECT_LT(share(scene.maskAt(instances[0].id), scene.maskAt(k)), 0.9) << "frame " << k;
+  }
+  EXPECT_EQ(asked, (std::vector<int>{0, 4, 8, 12}));
+}
+
+TEST(LaggedSegmenter, RefusesALagBelowOneFrame) {
+  const MovingScene scene;
+  std::vector<int> asked;
+  EXPECT_THROW(LaggedSegmenter(std::make_unique<RecordingSegmenter>(scene, asked), 0),
+               std::invalid_argument);
 }

@@ -88,6 +88,19 @@ TEST(ToolsCommandLine, EveryToolExitsTwoWithItsUsageOnAUsageError) {
   }
 }
 
+// --segment-lag models --live's masks: it needs a segmenter, not --live, and a lag >= 1.
+TEST(ToolsCommandLine, SegmentLagWithoutASegmenterOrWithLiveIsAUsageError) {
+  TempDir dir;
+  const std::string base = "--sequence s --config c --out o ";
+  for (const std::string& extra : {std::string("--segment-lag 4"),
+                                   std::string("--segmenter masks --live --segment-lag 4"),
+                                   std::string("--segmenter masks --segment-lag 0")}) {
+    const Result r = run(dir, "ply_slam_tum", base + extra);
+    EXPECT_EQ(r.exit_code, 2) << extra << " said: " << r.err;
+    EXPECT_TRUE(contains(r.err, "--segment-lag")) << extra << " said: " << r.err;
+  }
+}
+
 // Each tool's main goes through CommandLine and runTool (one behaviour for --help, unknown
 // options, usage errors and failures).
 TEST(ToolsCommandLine, EveryToolParsesWithCommandLine) {

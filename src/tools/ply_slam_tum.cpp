@@ -38,6 +38,7 @@
 #include "ply_slam/io/run_arguments.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/semantic/lagged_segmenter.h"
 #include "ply_slam/semantic/live_segmenter.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/semantic/segmenter_choice.h"
@@ -58,6 +59,7 @@ struct Options : RunArguments {
   std::string dynamic;             // overrides dynamic.mode of the config
   bool live = false;               // frames at their own pace, segmentation beside
   bool realtime = false;           // the mapping side on a thread of its own
+  long segment_lag = 0;            // > 0: LaggedSegmenter, live's masks reproducibly
   long save_images = 0;            // every N frames a tracking image; 0 = none
   std::string ground_truth_masks;  // walker masks: feature classification, ghost count
   std::string save_map;            // folder the map is saved into at the end; "" = none
@@ -69,7 +71,8 @@ struct Options : RunArguments {
 const char* const kUsage =
     "usage: ply_slam_tum --sequence DIR --config FILE --out DIR"
     " [--segmenter none|masks|yolo] [--model ONNX --input WxH]"
-    " [--dynamic off|geometric|semantic|full] [--live] [--realtime] [--save-images N]"
+    " [--dynamic off|geometric|semantic|full] [--live] [--realtime] [--segment-lag N]"
+    " [--save-images N]"
     " [--max-frames N]"
     " [--no-lines] [--no-loop] [--ground-truth-masks DIR] [--save-map DIR]"
     " [--map DIR [--localisation-only true|false]]\n"
@@ -83,6 +86,8 @@ const char* const kUsage =
     "          timing); without it the tracker waits for the mapping side at each keyframe and\n"
     "          runs repeat bit for bit\n"
     "  --save-images N: write every N-th tracking image to DIR/images\n"
+    "  --segment-lag N: segment every N-th frame, its masks used from N frames later and\n"
+    "          carried to each frame, as --live's are, but reproducibly\n"
     "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt\n"
     "  --segmenter yolo: YOLOv8-seg, model from the config's segmentation section or"
     " --model/--input (only with --segmenter yolo)\n"
@@ -111,6 +116,8 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     o.max_frames = parseCount(arg, value);
   } else if (arg == "--dynamic") {
     o.dynamic = value;
+  } else if (arg == "--segment-lag") {
+    o.segment_lag = wholeNumberArgument(arg, value, 1, 1000, "a whole number of frames >= 1");
   } else if (arg == "--save-images") {
     o.save_images = parseCount(arg, value);
   } else if (arg == "--save-map") {
@@ -134,6 +141,8 @@ void checkOptions(const Options& o) {
                        "' (off, geometric, semantic or full)");
     }
   if (o.live && o.segmentation.kind == "none") throw UsageError("--live needs a segmenter");
+  if (o.segment_lag > 0 && (o.live || o.segmentation.kind == "none"))
+    throw UsageError("--segment-lag needs a segmenter and not --live (which lags by itself)");
   if (o.localisation_only_given && o.map.empty())
     throw UsageError("--localisation-only needs --map");
   o.require();
@@ -152,6 +161,7 @@ Options parse(int argc, char** argv) {
                   "--input",
                   "--dynamic",
                   "--ground-truth-masks",
+                  "--segment-lag",
                   "--max-frames",
                   "--save-images",
                   "--save-map",
@@ -598,12 +608,16 @@ TumRun::TumRun(const Options& options)
   // Offline, every frame is segmented before it is tracked: runs are reproducible.
   segmenter_ = options.segmentation.make(config_.segmentation, sequence_.folder());
   if (!segmenter_) config_.dynamic.mode = modeWithoutSegmenter(config_.dynamic.mode);
+  if (options.segment_lag > 0)
+    segmenter_ = std::make_unique<LaggedSegmenter>(std::move(segmenter_),
+                                                   static_cast<int>(options.segment_lag));
   if (options.live)
     live_ =
         std::make_unique<LiveSegmenter>(std::move(segmenter_), config_.segmentation.live_threads);
   walker_masks_ = groundTruthMasks(options, sequence_);
   segmenter_is_ground_truth_ =
-      walker_masks_ && !options.live && options.segmentation.kind == "masks" &&
+      walker_masks_ && !options.live && options.segment_lag == 0 &&
+      options.segmentation.kind == "masks" &&
       (options.ground_truth_masks.empty() || options.ground_truth_masks == sequence_.folder());
   if (options.save_images > 0) fs::create_directories(out_ / "images");
   // The tracker works in a copy of the map of its own, as the tracking process of the
