@@ -41,7 +41,7 @@ def main():
           "`model:=`; the offline columns: `ply_slam_tum` with the same config and model). "
           "*Lag*: ms from the RGB-D pair's arrival, and from its image stamp (bag clock), to "
           "`~pose`; p50 / p95 / max over the posed frames. *Dropped*: frames older than "
-          "`frame_max_age` when the tracker came to them. CPU: % of one core over the run "
+          "`frame_max_age` when the tracker came to them. CPU: %% of one core over the run "
           "(the network runs in tracking_node). RSS: peak (VmHWM), MB." % (COMMAND[launch], "turtlebot3_d435i" if launch == "turtlebot3" else launch))
     print()
     print("| sequence | segmenter | rate | frames | posed | lost | dropped | lag from arrival ms | "
