@@ -97,7 +97,14 @@ class Stats:
         return v.get("tracked", 0) + v.get("lost", 0) + v.get("dropped_behind", 0)
 
 
-def wait_for_end(stats, player_pid, frames, quiet_s=5.0, limit_s=600.0):
+def process_alive(pid, popen=None):
+    """A child of ours stays in /proc as a zombie until it is waited for: poll it."""
+    if popen is not None:
+        return popen.poll() is None
+    return os.path.exists("/proc/%d" % pid)
+
+
+def wait_for_end(stats, player_alive, frames, quiet_s=5.0, limit_s=600.0):
     """Until the bag has played and every frame is accounted for (or nothing moved for
     quiet_s after the bag ended: frames the synchroniser never paired). Returns when the last
     frame was accounted for."""
@@ -106,8 +113,7 @@ def wait_for_end(stats, player_pid, frames, quiet_s=5.0, limit_s=600.0):
         done = stats.done()
         if done != last:
             last, last_change = done, time.time()
-        player_alive = os.path.exists("/proc/%d" % player_pid)
-        if not player_alive and (done >= frames or time.time() - last_change > quiet_s):
+        if not player_alive() and (done >= frames or time.time() - last_change > quiet_s):
             return last_change
         time.sleep(0.1)
     raise RuntimeError("the run did not end within %.0f s" % limit_s)
@@ -164,7 +170,7 @@ def main():
         if a.robot:
             subprocess.run(["rosparam", "set", "/use_sim_time", "true"], env=env, check=True)
             args = ["roslaunch", "ply_slam", "turtlebot3_d435i.launch", "camera:=false",
-                    "odom_frame:="] + common
+                    "odometry:=false"] + common
         else:
             args = ["roslaunch", "ply_slam", "tum_bag.launch", "bag:=" + a.bag, "rate:=" + a.rate,
                     "sim_time:=true"] + common
@@ -176,17 +182,19 @@ def main():
             procs.append(subprocess.Popen(["rosbag", "play", "--quiet", "--clock", "--delay=3",
                                            "--rate=" + a.rate, a.bag], env=env, stdout=log,
                                           stderr=subprocess.STDOUT))
-            player = procs[-1].pid
+            player_popen = procs[-1]
+            player = player_popen.pid
         else:
-            player = child_pid(launch.pid, "play")
+            player_popen, player = None, child_pid(launch.pid, "play")
         while stats.values.get("rgb_received", 0) == 0:
-            if launch.poll() is not None or not os.path.exists("/proc/%d" % player):
+            if launch.poll() is not None or not process_alive(player, player_popen):
                 raise RuntimeError("roslaunch or the player ended before the first frame (%s)"
                                    % log.name)
             time.sleep(0.05)
         t0 = time.time()
         cpu0 = {n: cpu_seconds(pid) for n, pid in (("tracker", tracker), ("mapper", mapper))}
-        wall = wait_for_end(stats, player, a.frames) - t0  # CPU over the frames' span
+        # CPU over the frames' span
+        wall = wait_for_end(stats, lambda: process_alive(player, player_popen), a.frames) - t0
         result = {"rate": float(a.rate), "model": os.path.basename(a.model) or "none",
                   "frames": a.frames, "wall_s": wall}
         for name, pid in (("tracker", tracker), ("mapper", mapper)):
