@@ -10,6 +10,7 @@
 
 #include "ply_slam/common/camera_check.h"
 #include "ply_slam/common/config_section.h"
+#include "ply_slam/common/yaml_bounds.h"
 #include "ply_slam/dense/dense_options_yaml.h"
 #include "ply_slam/dense/occupancy_grid_options_yaml.h"
 #include "ply_slam/dynamic/dynamic_options_yaml.h"
@@ -111,6 +112,7 @@ void appendDifferingKeys(const YAML::Node& a, const YAML::Node& b, const std::st
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
+  checkYamlBounds(root, path);  // before any walk: an alias cycle or bomb never ends one
   rejectDuplicateKeys(root, path, "");
 
   SystemConfig config;
