@@ -1,6 +1,7 @@
 // loadConfig: the shipped configs load with their documented values, and every kind of bad
 // file is rejected with a ConfigError that names the file and the offending key.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -374,6 +375,14 @@ TEST_F(ConfigFileTest, ADocumentNestedTooDeepIsAnErrorNamingTheFile) {
 
 TEST_F(ConfigFileTest, ADirectoryIsAnErrorNamingIt) {
   expectConfigError(dir_.string(), {"directory"});
+}
+
+// Opening a named pipe waits for a writer: the tools hung for ever (issue #53).
+TEST_F(ConfigFileTest, ANamedPipeOrADeviceIsAnErrorNamingIt) {
+  const std::string fifo = (dir_ / "f.yaml").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expectConfigError(fifo, {"named pipe"});
+  expectConfigError("/dev/zero", {"device"});
 }
 
 TEST_F(ConfigFileTest, DistortionNeedsFourOrFiveCoefficients) {

@@ -2,6 +2,7 @@
 // truncated, corrupted, other-version or other-vocabulary file is refused with an error naming
 // the file and the fault, the system left unchanged.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -135,6 +136,17 @@ TEST_F(MapFileTest, RoundTripKeepsKeyFramesLandmarksAndLinks) {
 
 TEST_F(MapFileTest, MissingFileIsNamed) {
   expectRefused(dir_.file("nothing_here"), "cannot be opened");
+}
+
+// A named pipe blocked the load for ever; a directory was "basic_filebuf::underflow" without
+// the file's name (issue #53).
+TEST_F(MapFileTest, SpecialFilesAreRefusedNamingThem) {
+  const fs::path fifo_folder = dir_.file("fifo"), dir_folder = dir_.file("dir");
+  fs::create_directories(fifo_folder);
+  fs::create_directories(dir_folder / System::kMapFileName);
+  ASSERT_EQ(::mkfifo((fifo_folder / System::kMapFileName).c_str(), 0600), 0);
+  expectRefused(fifo_folder.string(), "named pipe");
+  expectRefused(dir_folder.string(), "is a directory");
 }
 
 TEST_F(MapFileTest, TruncatedFileIsRefused) {

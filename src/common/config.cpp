@@ -16,6 +16,7 @@
 #include "ply_slam/dynamic/dynamic_options_yaml.h"
 #include "ply_slam/features/line_options_yaml.h"
 #include "ply_slam/features/orb_options_yaml.h"
+#include "ply_slam/io/input_file.h"
 #include "ply_slam/loop/loop_options_yaml.h"
 #include "ply_slam/mapping/culling_options_yaml.h"
 #include "ply_slam/mapping/local_mapping_options_yaml.h"
@@ -142,8 +143,9 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
 }  // namespace
 
 SystemConfig loadConfig(const std::string& path) {
-  if (std::filesystem::is_directory(path))
-    throw ConfigError("config " + path + ": is a directory, not a YAML file");
+  // A named pipe would block the open for ever, a directory fail with no name.
+  if (const auto problem = specialFileProblem(path))
+    throw ConfigError("config " + path + ": " + *problem);
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);

@@ -324,8 +324,9 @@ void checkBytes(const std::vector<uint8_t>& bytes, const std::string& path) {
 
 MapFileContents MapFileReader::read(const std::string& path, const MapFileSetup& expected,
                                     const std::vector<double>* scales) {
-  const std::optional<std::vector<uint8_t>> bytes = readFileBytes(path);
-  if (!bytes) fail(path, "cannot be opened or read (missing or unreadable)");
+  std::string why;
+  std::optional<std::vector<uint8_t>> bytes = readFileBytes(path, &why);
+  if (!bytes) fail(path, why);
   return decode(*bytes, path, expected, scales);
 }
 

@@ -447,6 +447,7 @@ struct Evaluation {
 Evaluation evaluate(const TumSequence& sequence, const Trajectory& trajectory) {
   Evaluation e;
   e.aligned = trajectory;
+  e.error = sequence.groundTruthProblem();  // a groundtruth.txt there that gives none
   if (!sequence.hasGroundTruth()) return e;
   const std::string file = (fs::path(sequence.folder()) / "groundtruth.txt").string();
   if (trajectory.size() < 3) {
