@@ -282,6 +282,26 @@ TEST(ToolsCommandLine, ASavedMapLoadsAgain) {
 
 void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
+// A trainer that saw no descriptors replaced a good 3.4 MB vocabulary by a one-word file and
+// exited 0 (issue #53): now it fails and leaves the file as it was.
+TEST(ToolsCommandLine, AVocabularyFromNoDescriptorsFailsAndKeepsTheOldFile) {
+  TempDir dir;
+  const std::string old = "a vocabulary that must stay";
+  writeText(dir.path() / "good.voc", old);
+  writeText(dir.path() / "list.txt", "nonexistent.png\n");
+  fs::create_directory(dir.path() / "junk");
+  writeText(dir.path() / "junk" / "a.png", "not a png");
+  writeText(dir.path() / "junk" / "b.png", "");
+  for (const char* images : {"list.txt", "junk"}) {
+    const Result r = run(dir, "ply_slam_vocabulary",
+                         std::string("--images ") + images + " --kind orb --out good.voc");
+    EXPECT_EQ(r.exit_code, 1) << images << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, "gave 0 descriptors") && contains(r.err, "good.voc not written"))
+        << r.err;
+    EXPECT_EQ(readAll(dir.path() / "good.voc"), old) << images;
+  }
+}
+
 const char* const kGroundTruth =
     "1.00 0 0 0 0 0 0 1\n1.10 1 0 0 0 0 0 1\n1.20 2 0 0 0 0 0 1\n1.30 3 0 0 0 0 0 1\n";
 
