@@ -138,6 +138,9 @@ TEST(FullDisk, FileWritesCountsAndNamesEachFile) {
   ASSERT_EQ(outputs.failures().size(), 3u);
   EXPECT_EQ(outputs.namesText(),
             dir.file("map.pgm") + ", " + dir.file("map.yaml") + " and (no file named)");
+  // save_map's reply and ply_slam_tum's last line.
+  EXPECT_EQ(outputs.summaryText(), "3 output(s) not written: " + outputs.namesText());
+  EXPECT_EQ(outputs.reasonsText().find("cannot write " + dir.file("map.pgm")), 0u);
 }
 
 }  // namespace

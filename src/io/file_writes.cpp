@@ -48,6 +48,12 @@ std::string FileWrites::namesText() const {
   return text;
 }
 
+std::string FileWrites::summaryText() const {
+  return std::to_string(failures_.size()) + " output(s) not written: " + namesText();
+}
+
+std::string FileWrites::reasonsText() const { return joined(failures_); }
+
 void FileWrites::throwFailures() const {
   if (!failures_.empty()) throw FileWriteErrors(failures_);
 }

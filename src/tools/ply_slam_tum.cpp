@@ -823,8 +823,7 @@ int TumRun::report() const {
   if (!outputs_.failures().empty()) {
     for (const auto& failure : outputs_.failures())
       std::cerr << "ply_slam_tum: " << failure.message << "\n";
-    std::cerr << "ply_slam_tum: " << outputs_.failures().size()
-              << " output(s) not written: " << outputs_.namesText() << "\n";
+    std::cerr << "ply_slam_tum: " << outputs_.summaryText() << "\n";
     return 1;
   }
   if (!evaluation_.error.empty()) {

@@ -36,6 +36,10 @@ class FileWrites {
   std::vector<std::string> messages() const;
   // The files not written, for a message ("a, b and c"); the message where a file is unknown.
   std::string namesText() const;
+  // "N output(s) not written: " and namesText().
+  std::string summaryText() const;
+  // Every failure's message, "; " between them.
+  std::string reasonsText() const;
   // The failures as one FileWriteErrors, when there are any.
   void throwFailures() const;
 
