@@ -1,8 +1,10 @@
 // loadConfig: the shipped configs load with their documented values, and every kind of bad
 // file is rejected with a ConfigError that names the file and the offending key.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -324,8 +326,63 @@ TEST_F(ConfigFileTest, ARepeatedKeyIsAnErrorNamingIt) {
                ConfigError);
 }
 
+// yaml-cpp shares an aliased node: an alias inside its own anchor made the duplicate-key walk
+// recurse until the stack overflowed (issue #53, exit 139), in every tool that reads a config.
+TEST_F(ConfigFileTest, AnAliasInsideItsOwnAnchorIsAnErrorNamingTheFile) {
+  expectConfigError(write("cycle.yaml", "a: &x [*x]\n"), {"alias", "cycle"});
+  expectConfigError(writeEdited("fx_cycle.yaml", "  fx: 517.3\n", "  fx: &x [*x]\n"),
+                    {"alias", "cycle"});
+  expectConfigError(write("map_cycle.yaml", std::string(kValidYaml) + "dense: &d {a: *d}\n"),
+                    {"cycle"});
+}
+
+// The billion laughs: l0 a list of 10 scalars, each lN a list of 10 aliases of l(N-1). 20 kB
+// that expand to 10^N nodes; N = 9 took longer than 75 s before (issue #53), N = 8 39 s.
+std::string aliasBomb(int levels) {
+  std::string text = "l0: &l0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int n = 1; n <= levels; ++n) {
+    const std::string prev = "*l" + std::to_string(n - 1);
+    text += "l" + std::to_string(n) + ": &l" + std::to_string(n) + " [" + prev;
+    for (int i = 1; i < 10; ++i) text += ", " + prev;
+    text += "]\n";
+  }
+  return text;
+}
+
+TEST_F(ConfigFileTest, NestedAliasesAreRefusedAtOnceNamingTheFile) {
+  const auto start = std::chrono::steady_clock::now();
+  expectConfigError(write("bomb.yaml", std::string(kValidYaml) + aliasBomb(9)),
+                    {"aliases expanded"});
+  expectConfigError(write("bomb5.yaml", std::string(kValidYaml) + aliasBomb(5)),
+                    {"aliases expanded"});
+  EXPECT_THROW(loadConfigFromString(std::string(kValidYaml) + aliasBomb(9), "text"), ConfigError);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  // A few aliases as a user writes them stay allowed, and a bomb small enough is only an
+  // unknown key.
+  expectConfigError(write("bomb3.yaml", std::string(kValidYaml) + aliasBomb(3)),
+                    {"l0", "not a known key"});
+  std::string shared = kValidYaml;
+  shared.replace(shared.find("  fx: 517.3"), 11, "  fx: &f 517.3");
+  shared.replace(shared.find("  fy: 516.5"), 11, "  fy: *f");
+  EXPECT_EQ(loadConfig(write("shared.yaml", shared)).camera.fy, 517.3);
+}
+
+TEST_F(ConfigFileTest, ADocumentNestedTooDeepIsAnErrorNamingTheFile) {
+  const std::string deep =
+      std::string(kValidYaml) + "dense: " + std::string(100, '[') + std::string(100, ']') + "\n";
+  expectConfigError(write("deep.yaml", deep), {"deeper than"});
+}
+
 TEST_F(ConfigFileTest, ADirectoryIsAnErrorNamingIt) {
   expectConfigError(dir_.string(), {"directory"});
+}
+
+// Opening a named pipe waits for a writer: the tools hung for ever (issue #53).
+TEST_F(ConfigFileTest, ANamedPipeOrADeviceIsAnErrorNamingIt) {
+  const std::string fifo = (dir_ / "f.yaml").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expectConfigError(fifo, {"named pipe"});
+  expectConfigError("/dev/zero", {"device"});
 }
 
 TEST_F(ConfigFileTest, DistortionNeedsFourOrFiveCoefficients) {

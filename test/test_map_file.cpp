@@ -2,9 +2,12 @@
 // truncated, corrupted, other-version or other-vocabulary file is refused with an error naming
 // the file and the fault, the system left unchanged.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "default_vocabularies.h"
 #include "ply_slam/common/config.h"
@@ -137,6 +140,17 @@ TEST_F(MapFileTest, MissingFileIsNamed) {
   expectRefused(dir_.file("nothing_here"), "cannot be opened");
 }
 
+// A named pipe blocked the load for ever; a directory was "basic_filebuf::underflow" without
+// the file's name (issue #53).
+TEST_F(MapFileTest, SpecialFilesAreRefusedNamingThem) {
+  const fs::path fifo_folder = dir_.file("fifo"), dir_folder = dir_.file("dir");
+  fs::create_directories(fifo_folder);
+  fs::create_directories(dir_folder / System::kMapFileName);
+  ASSERT_EQ(::mkfifo((fifo_folder / System::kMapFileName).c_str(), 0600), 0);
+  expectRefused(fifo_folder.string(), "named pipe");
+  expectRefused(dir_folder.string(), "is a directory");
+}
+
 TEST_F(MapFileTest, TruncatedFileIsRefused) {
   expectRefused(alteredCopy("cut", [](auto& b) { b.resize(b.size() - 1000); }), "truncated");
   expectRefused(alteredCopy("head", [](auto& b) { b.resize(12); }), "truncated");
@@ -182,6 +196,48 @@ TEST_F(MapFileTest, OtherCameraIsRefused) {
   SystemConfig config = loopConfig();
   config.camera.fx += 1.0;
   expectRefused(saved(), "another camera", config);
+}
+
+// A checksum that holds over numbers no map has (issue #53: a NaN keyframe pose loaded, every
+// frame tracked as NaN, "lost 0"): refused as a config would be, naming the item.
+TEST_F(MapFileTest, ValuesNoMapHasAreRefusedNamingTheItem) {
+  const auto keyframe = mapped_->map().keyFrames()[1];
+  const auto point = mapped_->map().mapPoints()[3];
+  const Eigen::Isometry3d pose = keyframe->T_cw;
+  const Eigen::Vector3d position = point->position;
+  auto savedWith = [&](const std::string& name, const std::function<void()>& change) {
+    keyframe->T_cw = pose;
+    point->position = position;
+    change();
+    mapped_->saveMap(dir_.file(name));
+    return dir_.file(name);
+  };
+  const std::string kf = "keyframe " + std::to_string(keyframe->id) + " ";
+  expectRefused(savedWith("nan_pose", [&] { keyframe->T_cw(0, 3) = std::nan(""); }),
+                kf + "has a pose that is not finite");
+  expectRefused(savedWith("inf_rotation", [&] { keyframe->T_cw(1, 1) = HUGE_VAL; }),
+                kf + "has a pose that is not finite");
+  expectRefused(savedWith("scaled", [&] { keyframe->T_cw.linear() *= 1.01; }),
+                kf + "has a rotation that is not a rotation matrix");
+  expectRefused(savedWith("mirrored", [&] { keyframe->T_cw.linear().col(0) *= -1.0; }),
+                kf + "has a rotation that is not a rotation matrix");
+  expectRefused(savedWith("far", [&] { keyframe->T_cw(2, 3) = 1e12; }),
+                kf + "has a position beyond");
+  expectRefused(savedWith("nan_point", [&] { point->position.y() = std::nan(""); }),
+                "point " + std::to_string(point->id) + " has a position");
+  expectRefused(savedWith("far_point", [&] { point->position.x() = -1e10; }),
+                "point " + std::to_string(point->id) + " has a position beyond");
+  // Back as it was, it loads.
+  System system(loopConfig());
+  EXPECT_NO_THROW(system.loadMap(savedWith("good", [] {})));
+}
+
+// Both sides of a refused camera differ in what they print (they printed alike at 6 digits).
+TEST_F(MapFileTest, AnotherCameraPrintsEveryDigit) {
+  SystemConfig config = loopConfig();
+  config.camera.fx = std::nextafter(config.camera.fx, 1e9);
+  expectRefused(saved(), "fx fy cx cy 517.3 ", config);
+  expectRefused(saved(), "(this system: 517.3000000000001 ", config);
 }
 
 TEST_F(MapFileTest, LoadingAfterTheFirstFrameIsAnError) {

@@ -1,5 +1,6 @@
 // Instance masks from a folder, and the system leaving out features on moving objects.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -77,6 +78,18 @@ TEST(MaskFolderSegmenter, MissingFilesAreNamed) {
   }
   cv::imwrite((dir / "masks" / "12.500000.png").string(), cv::Mat::zeros(48, 64, CV_16UC1));
   EXPECT_THROW(segmenter.segment(images), std::runtime_error);  // 16-bit ids
+  fs::remove(dir / "masks" / "12.500000.png");
+  ASSERT_EQ(::mkfifo((dir / "masks" / "12.500000.png").c_str(), 0600), 0);
+  try {
+    segmenter.segment(images);  // blocked for ever before (issue #53)
+    FAIL() << "a named pipe as a mask accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("12.500000.png: is a named pipe"), std::string::npos)
+        << e.what();
+  }
+  fs::remove(dir / "instances.txt");
+  ASSERT_EQ(::mkfifo((dir / "instances.txt").c_str(), 0600), 0);
+  EXPECT_THROW(MaskFolderSegmenter again(dir.string()), std::runtime_error);
   fs::remove_all(dir);
 }
 

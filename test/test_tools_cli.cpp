@@ -56,6 +56,8 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
 TEST(ToolsCommandLine, EveryToolPrintsItsUsageForHelp) {
   TempDir dir;
   for (const auto& tool : kTools) {
@@ -189,8 +191,31 @@ TEST(ToolsCommandLine, AnOutputThatCannotBeWrittenIsNamedAndFailsTheRun) {
   EXPECT_TRUE(contains(r.err, "out/summary.json")) << r.err;
   if (fs::exists("/dev/full")) {
     EXPECT_TRUE(contains(r.err, "out/timing.csv")) << r.err;
+    // The count is of files, and the last line names exactly those (issue #53).
+    EXPECT_TRUE(contains(r.err, "2 output(s) not written: out/timing.csv and out/summary.json"))
+        << r.err;
   }
   EXPECT_TRUE(fs::exists(dir.path() / "out" / "CameraTrajectory.txt"));
+}
+
+// A second run into the same folder that writes no dense cloud left the first run's beside
+// its own outputs (issue #53); a link there is the user's and stays.
+TEST(ToolsCommandLine, OutputsOfAnEarlierRunAreRemoved) {
+  PLY_SLAM_REQUIRE_SHARED(test::sharedPath(kSequence));
+  TempDir dir;
+  const std::string sequence = test::sharedPath(kSequence);
+  Result r = run(dir, "ply_slam_tum", tumArguments(sequence, "st") + " --max-frames 12");
+  ASSERT_TRUE(fs::exists(dir.path() / "st" / "dense_map.ply")) << r.err;
+  writeText(dir.path() / "kept.txt", "the user's");
+  fs::remove(dir.path() / "st" / "map.pgm");
+  fs::create_symlink(dir.path() / "kept.txt", dir.path() / "st" / "map.pgm");
+  r = run(dir, "ply_slam_tum", tumArguments(sequence, "st") + " --max-frames 2");
+  EXPECT_TRUE(contains(r.out, "of an earlier run from st: ")) << r.out;
+  EXPECT_TRUE(contains(r.out, " dense_map.pcd dense_map.ply")) << r.out;
+  EXPECT_FALSE(fs::exists(dir.path() / "st" / "dense_map.pcd"));
+  EXPECT_FALSE(fs::exists(dir.path() / "st" / "dense_map.ply"));
+  EXPECT_TRUE(fs::is_symlink(dir.path() / "st" / "map.pgm"));
+  EXPECT_TRUE(fs::exists(dir.path() / "st" / "summary.json"));
 }
 
 TEST(ToolsCommandLine, AMapWithoutDenseCloudSaysSo) {
@@ -280,7 +305,25 @@ TEST(ToolsCommandLine, ASavedMapLoadsAgain) {
   EXPECT_TRUE(contains(r.err, "--localisation-only needs --map")) << r.err;
 }
 
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+// A trainer that saw no descriptors replaced a good 3.4 MB vocabulary by a one-word file and
+// exited 0 (issue #53): now it fails and leaves the file as it was.
+TEST(ToolsCommandLine, AVocabularyFromNoDescriptorsFailsAndKeepsTheOldFile) {
+  TempDir dir;
+  const std::string old = "a vocabulary that must stay";
+  writeText(dir.path() / "good.voc", old);
+  writeText(dir.path() / "list.txt", "nonexistent.png\n");
+  fs::create_directory(dir.path() / "junk");
+  writeText(dir.path() / "junk" / "a.png", "not a png");
+  writeText(dir.path() / "junk" / "b.png", "");
+  for (const char* images : {"list.txt", "junk"}) {
+    const Result r = run(dir, "ply_slam_vocabulary",
+                         std::string("--images ") + images + " --kind orb --out good.voc");
+    EXPECT_EQ(r.exit_code, 1) << images << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, "gave 0 descriptors") && contains(r.err, "good.voc not written"))
+        << r.err;
+    EXPECT_EQ(readAll(dir.path() / "good.voc"), old) << images;
+  }
+}
 
 const char* const kGroundTruth =
     "1.00 0 0 0 0 0 0 1\n1.10 1 0 0 0 0 0 1\n1.20 2 0 0 0 0 0 1\n1.30 3 0 0 0 0 0 1\n";

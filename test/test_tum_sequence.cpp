@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/tum_trajectory_file.h"
 #include "shared_data.h"
 
 namespace ply_slam {
@@ -157,6 +159,22 @@ TEST_F(TumFolderTest, GroundTruthRead) {
   EXPECT_DOUBLE_EQ(seq.groundTruth()[1].T_wc.translation().x(), 1.5);
 }
 
+// An empty or directory groundtruth.txt gave no ATE and no word why (issue #53).
+TEST_F(TumFolderTest, AGroundTruthThatGivesNoneSaysWhy) {
+  writeStandardFolder();
+  writeText("groundtruth.txt", "# timestamp tx ty tz qx qy qz qw\n");
+  EXPECT_EQ(TumSequence(dir_.string()).groundTruthProblem(),
+            path("groundtruth.txt") + ": holds no poses");
+  fs::remove(path("groundtruth.txt"));
+  fs::create_directories(path("groundtruth.txt"));
+  const TumSequence seq(dir_.string());
+  EXPECT_FALSE(seq.hasGroundTruth());
+  EXPECT_EQ(seq.groundTruthProblem(),
+            path("groundtruth.txt") + ": is a directory, not a regular file");
+  fs::remove(path("groundtruth.txt"));
+  EXPECT_EQ(TumSequence(dir_.string()).groundTruthProblem(), "");
+}
+
 TEST_F(TumFolderTest, MissingFolderThrows) {
   const std::string missing = path("does_not_exist");
   expectThrowContaining([&] { TumSequence seq(missing); }, missing);
@@ -196,6 +214,26 @@ TEST_F(TumFolderTest, MissingImageThrowsNamingIt) {
   expectThrowContaining([&] { seq.load(2, 5000.0); }, path("depth/y.png") + ": image missing");
   fs::remove(path("rgb/a.png"));
   expectThrowContaining([&] { seq.load(0, 5000.0); }, path("rgb/a.png") + ": image missing");
+}
+
+// A named pipe in a list's or an image's place blocked the run for ever (issue #53); a
+// directory as an image was "image missing".
+TEST_F(TumFolderTest, SpecialFilesAreRefusedNamingThem) {
+  writeStandardFolder();
+  fs::remove(path("rgb/a.png"));
+  ASSERT_EQ(::mkfifo(path("rgb/a.png").c_str(), 0600), 0);
+  fs::remove(path("depth/x.png"));
+  fs::create_directories(path("depth/x.png"));
+  TumSequence seq(dir_.string(), 0.025);
+  expectThrowContaining([&] { seq.load(0, 5000.0); }, path("rgb/a.png") + ": is a named pipe");
+  fs::remove(path("rgb/a.png"));
+  writeRgb("a");
+  expectThrowContaining([&] { seq.load(0, 5000.0); }, path("depth/x.png") + ": is a directory");
+  fs::remove(path("depth.txt"));
+  ASSERT_EQ(::mkfifo(path("depth.txt").c_str(), 0600), 0);
+  expectThrowContaining([&] { TumSequence again(dir_.string()); },
+                        path("depth.txt") + ": is a named pipe");
+  expectThrowContaining([&] { readTumTrajectory(path("depth.txt")); }, "named pipe");
 }
 
 TEST_F(TumFolderTest, UnreadableImageThrowsNamingIt) {

@@ -1,6 +1,7 @@
 // The binary vocabulary (module loop): hierarchical k-means on known clusters, tf-idf, the
 // L1 score, and the vocabulary file with its checks.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
@@ -11,8 +12,8 @@
 #include <stdexcept>
 
 #include "loop_test_data.h"
-#include "ply_slam/loop/binary_vocabulary.h"
 #include "ply_slam/common/hamming.h"
+#include "ply_slam/loop/binary_vocabulary.h"
 
 namespace ply_slam {
 namespace {
@@ -199,6 +200,13 @@ TEST_F(VocabularyFileTest, RoundTripGivesTheSameWords) {
 
 TEST_F(VocabularyFileTest, MissingFileIsRejected) {
   expectRejected((dir_ / "none.voc").string(), DescriptorKind::kOrb, "missing");
+}
+
+TEST_F(VocabularyFileTest, SpecialFilesAreRejectedNamingThem) {
+  const std::string fifo = (dir_ / "fifo.voc").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expectRejected(fifo, DescriptorKind::kOrb, "named pipe");
+  expectRejected(dir_.string(), DescriptorKind::kOrb, "is a directory");
 }
 
 TEST_F(VocabularyFileTest, TruncatedFileIsRejected) {

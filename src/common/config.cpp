@@ -10,11 +10,13 @@
 
 #include "ply_slam/common/camera_check.h"
 #include "ply_slam/common/config_section.h"
+#include "ply_slam/common/yaml_bounds.h"
 #include "ply_slam/dense/dense_options_yaml.h"
 #include "ply_slam/dense/occupancy_grid_options_yaml.h"
 #include "ply_slam/dynamic/dynamic_options_yaml.h"
 #include "ply_slam/features/line_options_yaml.h"
 #include "ply_slam/features/orb_options_yaml.h"
+#include "ply_slam/io/input_file.h"
 #include "ply_slam/loop/loop_options_yaml.h"
 #include "ply_slam/mapping/culling_options_yaml.h"
 #include "ply_slam/mapping/local_mapping_options_yaml.h"
@@ -111,6 +113,7 @@ void appendDifferingKeys(const YAML::Node& a, const YAML::Node& b, const std::st
 // Every check of loadConfig, on a parsed document; `path` names it in errors.
 SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) throw ConfigError("config " + path + ": the top level must be a map");
+  checkYamlBounds(root, path);  // before any walk: an alias cycle or bomb never ends one
   rejectDuplicateKeys(root, path, "");
 
   SystemConfig config;
@@ -140,8 +143,9 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
 }  // namespace
 
 SystemConfig loadConfig(const std::string& path) {
-  if (std::filesystem::is_directory(path))
-    throw ConfigError("config " + path + ": is a directory, not a YAML file");
+  // A named pipe would block the open for ever, a directory fail with no name.
+  if (const auto problem = specialFileProblem(path))
+    throw ConfigError("config " + path + ": " + *problem);
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);

@@ -1,7 +1,9 @@
 #include "ply_slam/common/number_text.h"
 
+#include <array>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 
@@ -13,6 +15,12 @@ bool startsWithSpace(const std::string& text) {
   return !text.empty() && std::isspace(static_cast<unsigned char>(text.front()));
 }
 }  // namespace
+
+std::string exactText(double value) {
+  std::array<char, 32> text;
+  const auto end = std::to_chars(text.data(), text.data() + text.size(), value).ptr;
+  return std::string(text.data(), end);
+}
 
 std::optional<long> parseWholeNumber(const std::string& text, long min, long max) {
   if (text.empty() || startsWithSpace(text)) return std::nullopt;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/input_file.h"
 
 namespace ply_slam {
 namespace {
@@ -81,6 +82,8 @@ ClassPalette::ClassPalette() {
 }
 
 ClassPalette ClassPalette::fromFile(const std::string& path) {
+  if (const auto problem = specialFileProblem(path))
+    throw std::runtime_error("palette " + path + ": " + *problem);
   std::ifstream in(path);
   if (!in) throw std::runtime_error("palette " + path + ": cannot open the file");
   ClassPalette palette;

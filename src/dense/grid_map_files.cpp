@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/image_file.h"
 
 namespace ply_slam {
@@ -29,7 +30,8 @@ std::vector<std::string> writeGridMap(const std::string& folder, const Occupancy
   const std::string yaml = (fs::path(folder) / "map.yaml").string();
   // An empty grid still makes a loadable map: one unknown cell.
   const cv::Mat image = grid.width() > 0 ? gridMapImage(grid) : cv::Mat(1, 1, CV_8UC1, 205);
-  writeImageFile(pgm, image);
+  FileWrites files;  // each tried: a map.pgm that fails does not keep map.yaml off the disk
+  files.attempt([&] { writeImageFile(pgm, image); });
 
   const Eigen::Isometry3d corner = grid.corner(T_frame_floor);
   const double yaw = std::atan2(corner(1, 0), corner(0, 0));
@@ -43,7 +45,8 @@ std::vector<std::string> writeGridMap(const std::string& folder, const Occupancy
       << "negate: 0\n"
       << "occupied_thresh: 0.65\n"
       << "free_thresh: 0.196\n";
-  writeTextFileAtomically(yaml, out.str());
+  files.attempt([&] { writeTextFileAtomically(yaml, out.str()); });
+  files.throwFailures();
   return {pgm, yaml};
 }
 

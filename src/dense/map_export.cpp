@@ -1,7 +1,5 @@
 #include "ply_slam/dense/map_export.h"
 
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -9,7 +7,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "ply_slam/io/atomic_file.h"
+#include "ply_slam/dense/cloud_files.h"
 #include "ply_slam/io/file_writes.h"
 
 namespace ply_slam {
@@ -26,18 +24,8 @@ void writeDenseMaps(const std::string& folder, DenseMap& dense, const SemanticOc
   to_write.width = static_cast<std::uint32_t>(to_write.size());
   to_write.height = 1;
   if (!to_write.empty()) {
-    const std::string pcd = (dir / "dense_map.pcd").string();
-    files.attempt([&] {
-      writeFileAtomically(pcd, [&](const std::string& temp) {
-        return pcl::io::savePCDFileBinary(temp, to_write) == 0;
-      });
-    });
-    const std::string ply = (dir / "dense_map.ply").string();
-    files.attempt([&] {
-      writeFileAtomically(ply, [&](const std::string& temp) {
-        return pcl::io::savePLYFileBinary(temp, to_write) == 0;
-      });
-    });
+    files.attempt([&] { writeCloudPcd((dir / "dense_map.pcd").string(), to_write); });
+    files.attempt([&] { writeCloudPly((dir / "dense_map.ply").string(), to_write); });
   }
 
   const std::string ot = (dir / "semantic_octree.ot").string();

@@ -10,12 +10,14 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "ply_slam/io/file_writes.h"
+
 namespace ply_slam {
 namespace fs = std::filesystem;
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
-  throw std::runtime_error("cannot write " + path + ": " + why);
+  throw FileWriteError(path, why);
 }
 
 // Where the content ends up (a link's target, so that links stay links) and the temporary
@@ -96,7 +98,8 @@ void AtomicFile::commit() {
 }
 
 void writeFileAtomically(const std::string& path,
-                         const std::function<bool(const std::string& temp_path)>& write) {
+                         const std::function<bool(const std::string& temp_path)>& write,
+                         const std::function<std::string(const std::string& temp_path)>& check) {
   const Destination d = prepare(path);
   bool written = false;
   std::string why = "the writer reported a failure";
@@ -104,6 +107,10 @@ void writeFileAtomically(const std::string& path,
     written = write(d.temp_path.string());
   } catch (const std::exception& e) {
     why = e.what();
+  }
+  if (written && check) {
+    const std::string problem = check(d.temp_path.string());
+    if (!problem.empty()) written = false, why = problem;
   }
   if (!written) {
     std::error_code ignored;

@@ -1,8 +1,11 @@
 #include "ply_slam/io/byte_reader.h"
 
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+
+#include "ply_slam/io/input_file.h"
 
 namespace ply_slam {
 
@@ -41,13 +44,24 @@ std::string ByteReader::text() {
   return std::string(reinterpret_cast<const char*>(p), size);
 }
 
-std::optional<std::vector<uint8_t>> readFileBytes(const std::string& path) {
+std::optional<std::vector<uint8_t>> readFileBytes(const std::string& path, std::string* why) {
+  auto none = [why](const std::string& reason) {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (const auto problem = specialFileProblem(path)) return none(*problem);
   std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
-  if (in.bad()) return std::nullopt;
-  return bytes;
+  if (!in)
+    return none(errno == ENOENT ? "cannot be opened (missing)"
+                                : std::string("cannot be opened: ") + std::strerror(errno));
+  try {
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
+    if (in.bad()) return none("read error");
+    return bytes;
+  } catch (const std::exception& e) {  // libstdc++ throws from underflow on a read error
+    return none(std::string("read error: ") + e.what());
+  }
 }
 
 }  // namespace ply_slam

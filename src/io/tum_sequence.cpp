@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ply_slam/io/input_file.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 
 namespace ply_slam {
@@ -32,6 +33,7 @@ std::string typeName(int type) {
 // Calls on_line(tokens, line_number) so that each format reports its own expectation.
 template <typename OnLine>
 void forEachEntry(const std::string& path, OnLine on_line) {
+  refuseSpecialFile(path);  // a named pipe would block the open for ever
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open");
   std::string line;
@@ -46,6 +48,12 @@ void forEachEntry(const std::string& path, OnLine on_line) {
     for (std::string token; tokens_in >> token;) tokens.push_back(token);
     on_line(tokens, line_number);
   }
+}
+
+// A list file the folder must have: refused when it is not there or not a regular file.
+void requireListFile(const std::string& path) {
+  refuseSpecialFile(path);
+  if (!fs::exists(path)) throw std::runtime_error(path + ": missing");
 }
 
 // Parses a stamp in the C locale: a global locale with a decimal comma must not change
@@ -104,11 +112,11 @@ TumSequence::TumSequence(const std::string& folder, double max_stamp_difference)
   const std::string rgb_list = joinPath(folder_, "rgb.txt");
   const std::string depth_list = joinPath(folder_, "depth.txt");
   const std::string associations = joinPath(folder_, "associations.txt");
-  if (!fs::is_regular_file(rgb_list)) throw std::runtime_error(rgb_list + ": missing");
+  requireListFile(rgb_list);
   const std::vector<StampedFile> rgb = readFileList(rgb_list);
   if (rgb.empty()) throw std::runtime_error(rgb_list + ": lists no frames");
 
-  if (fs::is_regular_file(associations)) {
+  if (fs::exists(associations)) {  // a named pipe or a directory there is refused
     // The data set's own pairing wins: results stay comparable with other systems.
     used_associations_file_ = true;
     forEachEntry(associations, [&](const std::vector<std::string>& tokens, int line_number) {
@@ -134,7 +142,7 @@ TumSequence::TumSequence(const std::string& folder, double max_stamp_difference)
     unassociated_ = rgb.size() > records_.size() ? rgb.size() - records_.size() : 0;
     if (records_.empty()) throw std::runtime_error(associations + ": lists no frames");
   } else {
-    if (!fs::is_regular_file(depth_list)) throw std::runtime_error(depth_list + ": missing");
+    requireListFile(depth_list);
     const std::vector<StampedFile> depth = readFileList(depth_list);
     // Nearest depth per rgb frame, not TUM's greedy one-to-one matching: a depth image may
     // serve several rgb frames, so no rgb frame is dropped just because a neighbour was
@@ -165,8 +173,18 @@ TumSequence::TumSequence(const std::string& folder, double max_stamp_difference)
     }
   }
 
-  const std::string gt_path = joinPath(folder_, "groundtruth.txt");
-  if (fs::is_regular_file(gt_path)) ground_truth_ = readTumTrajectory(gt_path);
+  readGroundTruth(joinPath(folder_, "groundtruth.txt"));
+}
+
+void TumSequence::readGroundTruth(const std::string& path) {
+  if (!fs::exists(path)) return;
+  // The run goes on without: its outputs are written, and the summary says why there is no ATE.
+  if (const auto problem = specialFileProblem(path)) {
+    ground_truth_problem_ = path + ": " + *problem;
+    return;
+  }
+  ground_truth_ = readTumTrajectory(path);
+  if (ground_truth_.empty()) ground_truth_problem_ = path + ": holds no poses";
 }
 
 RgbdImages TumSequence::load(size_t i, double depth_factor) const {
@@ -179,6 +197,7 @@ RgbdImages TumSequence::load(size_t i, double depth_factor) const {
   }
   const RgbdRecord& r = records_[i];
   auto read = [](const std::string& path) {
+    refuseSpecialFile(path);
     if (!fs::is_regular_file(path)) throw std::runtime_error(path + ": image missing");
     cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
     if (image.empty()) throw std::runtime_error(path + ": image unreadable");

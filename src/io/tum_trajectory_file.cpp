@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/input_file.h"
 
 namespace ply_slam {
 namespace {
@@ -45,6 +46,8 @@ bool parseFiniteDouble(const std::string& token, double* value) {
 }  // namespace
 
 Trajectory readTumTrajectory(const std::string& path) {
+  if (const auto problem = specialFileProblem(path))
+    throw std::runtime_error("trajectory file '" + path + "' " + *problem);
   std::ifstream in(path);
   if (!in) {
     throw std::runtime_error("cannot open trajectory file '" + path + "'");

@@ -10,6 +10,8 @@
 #include <opencv2/videoio.hpp>
 #include <stdexcept>
 
+#include "ply_slam/io/input_file.h"
+
 namespace fs = std::filesystem;
 
 namespace ply_slam {
@@ -35,6 +37,8 @@ std::vector<std::string> folderFiles(const std::string& dir) {
 }
 
 std::vector<std::string> listFiles(const std::string& list) {
+  if (const auto problem = specialFileProblem(list))
+    throw std::runtime_error("image list " + list + " " + *problem);
   std::ifstream in(list);
   if (!in) throw std::runtime_error("image list " + list + " cannot be read");
   const fs::path base = fs::path(list).parent_path();
@@ -89,9 +93,10 @@ void TrainingImages::forEach(const Visit& visit) const {
       visitVideo(file, visit);
       continue;
     }
-    const cv::Mat gray = cv::imread(file, cv::IMREAD_GRAYSCALE);
+    const auto problem = specialFileProblem(file);
+    const cv::Mat gray = problem ? cv::Mat() : cv::imread(file, cv::IMREAD_GRAYSCALE);
     if (gray.empty())
-      std::cerr << "skipped (unreadable image): " << file << "\n";
+      std::cerr << "skipped (" << problem.value_or("unreadable image") << "): " << file << "\n";
     else
       visit(gray, file);
   }

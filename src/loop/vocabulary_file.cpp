@@ -46,8 +46,9 @@ std::vector<uint8_t> encode(const VocabularyData& data) {
 }
 
 std::vector<uint8_t> readAll(const std::string& path) {
-  std::optional<std::vector<uint8_t>> bytes = readFileBytes(path);
-  if (!bytes) fail(path, "cannot be opened or read (missing or unreadable)");
+  std::string why;
+  std::optional<std::vector<uint8_t>> bytes = readFileBytes(path, &why);
+  if (!bytes) fail(path, why);
   return std::move(*bytes);
 }
 

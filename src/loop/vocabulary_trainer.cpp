@@ -65,6 +65,12 @@ BinaryVocabulary VocabularyTrainer::train(const std::vector<cv::Mat>& images) co
   line << "training on " << n << " descriptors of " << images.size() << " images, k "
        << params_.branching << ", L " << params_.levels;
   report(line.str());
+  // Fewer than k descriptors make a vocabulary of one word or none: every image alike, and
+  // a loop detector that uses it finds nothing without a word (issue #53).
+  if (n < static_cast<size_t>(params_.branching))
+    throw std::invalid_argument(
+        "vocabulary: " + std::to_string(n) + " descriptors in " + std::to_string(images.size()) +
+        " images, fewer than k = " + std::to_string(params_.branching) + ": nothing to train on");
 
   VocabularyData tree;
   tree.kind = params_.kind;

@@ -7,9 +7,11 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "ply_slam/common/number_text.h"
 #include "ply_slam/io/byte_reader.h"
 #include "ply_slam/loop/fnv1a.h"
 #include "ply_slam/map/map_file_format.h"
+#include "ply_slam/map/map_value_check.h"
 
 namespace ply_slam {
 namespace {
@@ -89,14 +91,18 @@ std::string mismatch(const MapFileSetup& stored, const MapFileSetup& expected) {
   std::ostringstream text;
   if (a.fx != b.fx || a.fy != b.fy || a.cx != b.cx || a.cy != b.cy || a.width != b.width ||
       a.height != b.height) {
-    text << "made with another camera: fx fy cx cy " << a.fx << ' ' << a.fy << ' ' << a.cx << ' '
-         << a.cy << ", " << a.width << "x" << a.height << " (this system: " << b.fx << ' ' << b.fy
-         << ' ' << b.cx << ' ' << b.cy << ", " << b.width << "x" << b.height << ")";
+    // Every digit: 517.3 and 517.30000000000001 differ, and the message must show how.
+    auto intrinsics = [](const PinholeCamera& c) {
+      return exactText(c.fx) + ' ' + exactText(c.fy) + ' ' + exactText(c.cx) + ' ' +
+             exactText(c.cy) + ", " + std::to_string(c.width) + "x" + std::to_string(c.height);
+    };
+    text << "made with another camera: fx fy cx cy " << intrinsics(a)
+         << " (this system: " << intrinsics(b) << ")";
   } else if (stored.orb_levels != expected.orb_levels ||
              stored.orb_scale_factor != expected.orb_scale_factor) {
     text << "made with another ORB pyramid: " << stored.orb_levels << " levels, scale "
-         << stored.orb_scale_factor << " (this system: " << expected.orb_levels << ", "
-         << expected.orb_scale_factor << ")";
+         << exactText(stored.orb_scale_factor) << " (this system: " << expected.orb_levels << ", "
+         << exactText(expected.orb_scale_factor) << ")";
   } else {
     for (const auto& [kind, s, e] :
          {std::make_tuple("ORB", stored.orb_vocabulary, expected.orb_vocabulary),
@@ -324,8 +330,9 @@ void checkBytes(const std::vector<uint8_t>& bytes, const std::string& path) {
 
 MapFileContents MapFileReader::read(const std::string& path, const MapFileSetup& expected,
                                     const std::vector<double>* scales) {
-  const std::optional<std::vector<uint8_t>> bytes = readFileBytes(path);
-  if (!bytes) fail(path, "cannot be opened or read (missing or unreadable)");
+  std::string why;
+  std::optional<std::vector<uint8_t>> bytes = readFileBytes(path, &why);
+  if (!bytes) fail(path, why);
   return decode(*bytes, path, expected, scales);
 }
 
@@ -339,6 +346,8 @@ MapFileContents MapFileReader::decode(const std::vector<uint8_t>& bytes, const s
     const std::string differs = mismatch(stored, expected);
     if (!differs.empty()) fail(name, differs);
     MapFileContents contents = decodePayload(in, stored, scales);
+    if (const std::string problem = findMapValueProblem(contents); !problem.empty())
+      fail(name, problem);
     contents.checksum = ByteReader::word(bytes.data() + bytes.size() - 8, 8);
     return contents;
   } catch (const Inconsistent& e) {

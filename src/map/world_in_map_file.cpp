@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/input_file.h"
 
 namespace ply_slam {
 
@@ -23,6 +24,7 @@ void WorldInMapFile::write(const std::string& path, const Eigen::Isometry3d& T_m
 
 std::optional<Eigen::Isometry3d> WorldInMapFile::read(const std::string& path) {
   if (!std::filesystem::exists(path)) return std::nullopt;
+  refuseSpecialFile(path);
   std::ifstream in(path);
   std::string line;
   while (in && std::getline(in, line) && (line.empty() || line[0] == '#')) {

@@ -8,6 +8,7 @@
 
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/ros/mapping_back_end.h"
+#include "ply_slam/ros/service_call.h"
 #include "ply_slam/ros/split_messages.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 
@@ -184,12 +185,12 @@ void ApartMappingSide::askForHandOver(const std::string& when, uint64_t next_job
   HandOverMap ask;
   ask.request.next_job_sequence = next_job;
   ask.request.next_update_sequence = updates_sent_;
-  if (!hand_over_client_.call(ask) || !ask.response.success) {
-    ROS_ERROR_STREAM("mapping_node: asked "
-                     << hand_over_client_.getService() << " " << when
-                     << " for the tracker's map, no answer"
-                     << (ask.response.message.empty() ? std::string() : ": " + ask.response.message)
-                     << "; the map goes on without what it missed");
+  std::string why = callService(hand_over_client_, ask, std::chrono::seconds(30));
+  if (why.empty() && !ask.response.success) why = "refused: " + ask.response.message;
+  if (!why.empty()) {
+    ROS_ERROR_STREAM("mapping_node: asked " << hand_over_client_.getService() << " " << when
+                                            << " for the tracker's map: " << why
+                                            << "; the map goes on without what it missed");
     return;
   }
   awaiting_handover_ = ask.response.handing_over;

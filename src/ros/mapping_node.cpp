@@ -21,6 +21,7 @@
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/dense_map_messages.h"
 #include "ply_slam/ros/grid_map_message.h"
+#include "ply_slam/ros/service_call.h"
 #include "ply_slam/ros/sparse_map_messages.h"
 #include "ply_slam/ros/split_messages.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
@@ -224,9 +225,10 @@ void MappingNode::onMissed(uint64_t missed, const std::string& what) {
     resend_requested_ = true;
   }
   std_srvs::Trigger trigger;
-  if (resend_client_.call(trigger) && trigger.response.success) return;
-  ROS_ERROR_STREAM("mapping_node: " << resend_client_.getService()
-                                    << " did not answer: the map stays partial");
+  std::string why = callService(resend_client_, trigger, std::chrono::seconds(10));
+  if (why.empty() && trigger.response.success) return;
+  if (why.empty()) why = resend_client_.getService() + " refused: " + trigger.response.message;
+  ROS_ERROR_STREAM("mapping_node: " << why << ": the map stays partial");
   std::lock_guard<std::mutex> lock(mutex_);
   resend_requested_ = false;
 }
@@ -493,12 +495,12 @@ void MappingNode::publishGrid(const ros::TimerEvent&) {
 void MappingNode::saveTrackerMap(const std::string& folder) {
   SaveToPath save;
   save.request.path = folder;
-  if (!tracker_save_map_client_.call(save))
-    throw std::runtime_error(std::string(System::kMapFileName) + " not written: " +
-                             tracker_save_map_client_.getService() + " did not answer");
+  const std::string map_file = (std::filesystem::path(folder) / System::kMapFileName).string();
+  // The tracker gives itself 60 s to write the map between two frames, and says so.
+  const std::string why = callService(tracker_save_map_client_, save, std::chrono::seconds(90));
+  if (!why.empty()) throw FileWriteError(map_file, why);
   if (!save.response.success)
-    throw std::runtime_error(std::string(System::kMapFileName) +
-                             " not written: " + save.response.message);
+    throw FileWriteError(map_file, "the tracker answered: " + save.response.message);
 }
 
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {
@@ -539,17 +541,16 @@ bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& re
                              "occupancy grid (" + frame + ")");
       });
     });
-  try {
-    files.throwFailures();
+  if (!files.failures().empty()) {
+    response.success = false;
+    response.message = files.summaryText() + " (" + files.reasonsText() + ")";
+  } else {
     const std::string partial = partialReason(true);
     response.success = partial.empty();
     response.message = (partial.empty() ? "" : "PARTIAL (" + partial + "): ") +
                        std::to_string(store_.keyFrames().size()) + " keyframes, " +
                        std::to_string(store_.points().size()) + " points, " +
                        std::to_string(store_.lines().size()) + " lines to " + request.path;
-  } catch (const std::exception& e) {
-    response.success = false;
-    response.message = e.what();
   }
   if (response.success)
     ROS_INFO_STREAM("save_map: " << response.message);

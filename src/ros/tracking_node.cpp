@@ -16,6 +16,7 @@
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/ros/conversions.h"
+#include "ply_slam/ros/service_call.h"
 #include "ply_slam/ros/split_messages.h"
 #include "ply_slam/semantic/segmentation_image.h"
 #include "ply_slam/system/tracking_image.h"
@@ -441,11 +442,11 @@ void TrackingNode::askMapperForItsMap() {
     return;
   }
   MapForTracker ask;
-  if (!client.call(ask) || !ask.response.success) {
-    ROS_ERROR_STREAM("tracking_node: "
-                     << client.getService() << " did not answer"
-                     << (ask.response.message.empty() ? std::string() : ": " + ask.response.message)
-                     << "; a map of its own");
+  std::string why = callService(client, ask, std::chrono::seconds(30));
+  if (why.empty() && !ask.response.success)
+    why = client.getService() + " refused: " + ask.response.message;
+  if (!why.empty()) {
+    ROS_ERROR_STREAM("tracking_node: " << why << "; a map of its own");
     return;
   }
   const MapForTracker::Response& r = ask.response;

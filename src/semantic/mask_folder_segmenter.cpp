@@ -8,9 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ply_slam/io/input_file.h"
+
 namespace ply_slam {
 
 std::map<int, std::string> readInstanceClasses(const std::string& path) {
+  refuseSpecialFile(path);
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": missing (the instance id -> class list)");
   std::map<int, std::string> classes;
@@ -41,6 +44,7 @@ std::vector<Instance> MaskFolderSegmenter::segment(const RgbdImages& images) {
   char name[64];
   std::snprintf(name, sizeof(name), "%.6f.png", images.stamp);
   const std::string path = folder_ + "/masks/" + name;
+  refuseSpecialFile(path);
   if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": mask missing");
   const cv::Mat ids = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (ids.empty()) throw std::runtime_error(path + ": mask unreadable");

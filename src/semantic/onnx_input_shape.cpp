@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "ply_slam/io/input_file.h"
+
 namespace ply_slam {
 namespace {
 
@@ -121,6 +123,7 @@ std::vector<std::int64_t> inputShape(const std::string& bytes) {
 }  // namespace
 
 std::vector<std::int64_t> readOnnxInputShape(const std::string& path) {
+  refuseSpecialFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot read the ONNX model");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "ply_slam/io/input_file.h"
 #include "ply_slam/semantic/onnx_input_shape.h"
 #include "ply_slam/semantic/yolo_options_yaml.h"
 
@@ -40,6 +41,7 @@ Letterbox letterbox(const cv::Mat& bgr, int width, int height, cv::Mat& input) {
 }
 
 std::vector<std::string> readClassNames(const std::string& path) {
+  refuseSpecialFile(path);
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot read the class names");
   std::vector<std::string> names;
@@ -221,6 +223,7 @@ YoloV8Seg::YoloV8Seg(const YoloOptions& params) : params_(params) {
     throw std::runtime_error("no YOLOv8-seg model given (config segmentation.model or --model)");
   if (!std::filesystem::exists(params_.model_path))
     throw std::runtime_error(params_.model_path + ": YOLOv8-seg model file missing");
+  refuseSpecialFile(params_.model_path);
   try {
     net_ = cv::dnn::readNetFromONNX(params_.model_path);
   } catch (const cv::Exception& e) {

@@ -532,7 +532,10 @@ int run(const Options& o) {
     config.dynamic.mode = modeWithoutSegmenter(config.dynamic.mode);
   const TumSequence sequence(o.sequence);
   if (!sequence.hasGroundTruth())
-    throw std::runtime_error(o.sequence + ": no groundtruth.txt, true loops cannot be defined");
+    throw std::runtime_error((sequence.groundTruthProblem().empty()
+                                  ? o.sequence + ": no groundtruth.txt"
+                                  : sequence.groundTruthProblem()) +
+                             ", true loops cannot be defined");
   fs::create_directories(o.out);
   RunInfo info;
   LoopDetector detector = makeDetector(config, o.truth.min_gap_s, info);

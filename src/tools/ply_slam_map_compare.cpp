@@ -181,7 +181,9 @@ int run(const Options& options) {
   const SystemConfig config = loadConfig(options.config);
   const TumSequence sequence(options.sequence);
   if (!sequence.hasGroundTruth())
-    throw std::runtime_error(options.sequence + ": no groundtruth.txt");
+    throw std::runtime_error(sequence.groundTruthProblem().empty()
+                                 ? options.sequence + ": no groundtruth.txt"
+                                 : sequence.groundTruthProblem());
   const Trajectory keyframes = readTumTrajectory(options.keyframes);
   if (keyframes.size() < 3) throw std::runtime_error(options.keyframes + ": fewer than 3 poses");
 

@@ -33,6 +33,7 @@
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/atomic_file.h"
+#include "ply_slam/io/earlier_outputs.h"
 #include "ply_slam/io/file_writes.h"
 #include "ply_slam/io/image_file.h"
 #include "ply_slam/io/run_arguments.h"
@@ -421,6 +422,41 @@ struct RunCounts {
   }
 };
 
+// Every file a run may write into --out; those of an earlier run are removed at the start.
+std::vector<std::string> outputNames(const fs::path& out) {
+  std::vector<std::string> names = {"CameraTrajectory.txt",
+                                    "KeyFrameTrajectory.txt",
+                                    "timing.csv",
+                                    "summary.json",
+                                    "trajectory.png",
+                                    "dense_map.pcd",
+                                    "dense_map.ply",
+                                    "semantic_octree.ot",
+                                    "octree.bt",
+                                    "map_legend.txt",
+                                    "map_top.png",
+                                    "map.pgm",
+                                    "map.yaml",
+                                    "grid.png"};
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(out / "images", error)) {
+    const std::string stem = entry.path().stem().string();  // saveImage's %06ld.jpg
+    if (entry.path().extension() == ".jpg" && stem.size() >= 6 &&
+        stem.find_first_not_of("0123456789") == std::string::npos)
+      names.push_back("images/" + entry.path().filename().string());
+  }
+  return names;
+}
+
+void removeEarlierRun(const fs::path& out) {
+  const std::vector<std::string> removed = removeEarlierOutputs(out, outputNames(out));
+  if (removed.empty()) return;
+  std::cout << "removed " << removed.size() << " output(s) of an earlier run from " << out.string()
+            << ":";
+  for (const std::string& name : removed) std::cout << ' ' << name;
+  std::cout << "\n";
+}
+
 const char* const kTimingHeader =
     "frame,stamp,state,method,inliers,line_inliers,keyframe,features_ms,lines_ms,tracking_ms,"
     "mapping_ms,total_ms,rss_mb,keyframes,map_points,map_wait_ms,follow_ms\n";
@@ -447,6 +483,7 @@ struct Evaluation {
 Evaluation evaluate(const TumSequence& sequence, const Trajectory& trajectory) {
   Evaluation e;
   e.aligned = trajectory;
+  e.error = sequence.groundTruthProblem();  // a groundtruth.txt there that gives none
   if (!sequence.hasGroundTruth()) return e;
   const std::string file = (fs::path(sequence.folder()) / "groundtruth.txt").string();
   if (trajectory.size() < 3) {
@@ -605,6 +642,7 @@ TumRun::TumRun(const Options& options)
       sequence_(options.sequence),
       out_(options.out) {
   fs::create_directories(out_);
+  removeEarlierRun(out_);
   // Offline, every frame is segmented before it is tracked: runs are reproducible.
   segmenter_ = options.segmentation.make(config_.segmentation, sequence_.folder());
   if (!segmenter_) config_.dynamic.mode = modeWithoutSegmenter(config_.dynamic.mode);
@@ -765,7 +803,7 @@ void TumRun::finishMapsAndPlot(Json& json) {
 
 void TumRun::writeSummary(Json& json) {
   json["peak_rss_mb"] = rounded(peakRssMb());
-  if (!outputs_.failures().empty()) json["output_errors"] = outputs_.failures();
+  if (!outputs_.failures().empty()) json["output_errors"] = outputs_.messages();
   outputs_.attempt(
       [&] { writeTextFileAtomically((out_ / "summary.json").string(), json.dump(2) + "\n"); });
 }
@@ -784,8 +822,8 @@ int TumRun::report() const {
   }
   if (!outputs_.failures().empty()) {
     for (const auto& failure : outputs_.failures())
-      std::cerr << "ply_slam_tum: " << failure << "\n";
-    std::cerr << "ply_slam_tum: " << outputs_.failures().size() << " output(s) not written\n";
+      std::cerr << "ply_slam_tum: " << failure.message << "\n";
+    std::cerr << "ply_slam_tum: " << outputs_.summaryText() << "\n";
     return 1;
   }
   if (!evaluation_.error.empty()) {

@@ -16,6 +16,7 @@
 #include <optional>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -157,6 +158,18 @@ std::vector<cv::Mat> describeAll(const TrainingImages& images, const Describer& 
   return out;
 }
 
+// Nothing is written then: a good vocabulary in --out's place stays (it was replaced by a
+// one-word file, issue #53).
+void refuseTooFew(const std::vector<cv::Mat>& descriptors, const Options& o) {
+  long rows = 0;
+  for (const cv::Mat& d : descriptors) rows += d.rows;
+  if (rows >= o.vocabulary.branching) return;
+  throw std::runtime_error(o.images + " gave " + std::to_string(rows) + " descriptors in " +
+                           std::to_string(descriptors.size()) +
+                           " readable images, fewer than k = " +
+                           std::to_string(o.vocabulary.branching) + "; " + o.out + " not written");
+}
+
 int train(const Options& o) {
   const Stopwatch total;
   const TrainingImages images(o.images, o.video_step);
@@ -165,6 +178,7 @@ int train(const Options& o) {
   const Describer describer(o);
   const std::vector<cv::Mat> descriptors = describeAll(images, describer, o.vocabulary.kind);
   std::cout << "extraction " << total.elapsedMs() / 1000.0 << " s" << std::endl;
+  refuseTooFew(descriptors, o);
   const Stopwatch clustering;
   const BinaryVocabulary vocabulary = BinaryVocabulary::train(
       descriptors, o.vocabulary,

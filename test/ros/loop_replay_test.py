@@ -26,6 +26,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import PoseStamped
 
+import checked_run
 import ros_test_support as support
 
 POSE_TOPIC = "/ply_slam/tracking_node/pose"
@@ -96,8 +97,8 @@ def ring_bag(frames, config):
     if not os.path.isfile(done):
         remove_stale_rings(cache)
         shutil.rmtree(cache, True)
-        subprocess.run([synth, "--out", ring, "--scene", "ring", "--frames", str(frames),
-                        "--loop", "--noise"], check=True, capture_output=True)
+        checked_run.run([synth, "--out", ring, "--scene", "ring", "--frames", str(frames),
+                         "--loop", "--noise"])
         support.tum_to_bag(ring, bag, d435i=True, extra=["--config", config, "--lz4"])
         keep_head(ring, 3)
         shutil.rmtree(os.path.join(ring, "rgb"))  # the bag has them now

@@ -25,19 +25,19 @@ import rostest
 import tf2_ros
 from geometry_msgs.msg import PoseStamped, TransformStamped
 
+import checked_run
 import ros_test_support as support
 
 
 def run_tum(*args):
     config = os.path.join(support.PACKAGE_DIR, "config", "tum_fr1.yaml")
-    subprocess.run([support.tool("ply_slam_tum"), "--config", config] + list(args), check=True,
-                   capture_output=True)
+    checked_run.run([support.tool("ply_slam_tum"), "--config", config] + list(args))
 
 
 def ate_in_map(sequence, trajectory, mapping_trajectory):
-    out = subprocess.run([support.tool("ply_slam_eval"), "ate",
-                          os.path.join(sequence, "groundtruth.txt"), trajectory, "--align-with",
-                          mapping_trajectory, "--json"], check=True, capture_output=True, text=True)
+    out = checked_run.run([support.tool("ply_slam_eval"), "ate",
+                           os.path.join(sequence, "groundtruth.txt"), trajectory, "--align-with",
+                           mapping_trajectory, "--json"])
     return json.loads(out.stdout)
 
 

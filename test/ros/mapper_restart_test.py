@@ -15,6 +15,7 @@ import unittest
 import rospy
 import rostest
 
+import checked_run
 import ros_test_support as support
 
 MAPPER = "/ply_slam/mapping_node"
@@ -28,7 +29,7 @@ class MapperRestart(unittest.TestCase):
         self.addCleanup(shutil.rmtree, work, True)
         frames, offline_ate, stats, player = support.slow_replay(sequence, work)
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= 3, 60))
-        subprocess.run(["rosnode", "kill", MAPPER], check=True, capture_output=True)
+        checked_run.run(["rosnode", "kill", MAPPER])
         down_at = stats.get("keyframes")
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= down_at + 2, 60),
                         "no keyframe while the mapper was down")

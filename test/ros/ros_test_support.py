@@ -10,6 +10,7 @@ import tempfile
 import time
 import unittest
 
+import checked_run
 import rospkg
 import rospy
 from geometry_msgs.msg import PoseStamped
@@ -57,8 +58,8 @@ def tum_to_bag(sequence, bag, d435i=False, extra=()):
 
 
 def ate_rmse(sequence, trajectory):
-    out = subprocess.run([tool("ply_slam_eval"), "ate", os.path.join(sequence, "groundtruth.txt"),
-                          trajectory, "--json"], check=True, capture_output=True, text=True)
+    out = checked_run.run([tool("ply_slam_eval"), "ate",
+                           os.path.join(sequence, "groundtruth.txt"), trajectory, "--json"])
     return json.loads(out.stdout)
 
 
@@ -67,9 +68,9 @@ def loop_gap(sequence, trajectory):
     it (m): the drift a loop closure takes out, on a sequence that ends where it began."""
     with open(trajectory) as f:
         poses = sum(1 for line in f if line.strip() and not line.startswith("#"))
-    out = subprocess.run([tool("ply_slam_eval"), "rpe", os.path.join(sequence, "groundtruth.txt"),
-                          trajectory, "--delta", str(poses - 1), "--json"], check=True,
-                         capture_output=True, text=True)
+    out = checked_run.run([tool("ply_slam_eval"), "rpe",
+                           os.path.join(sequence, "groundtruth.txt"), trajectory, "--delta",
+                           str(poses - 1), "--json"])
     result = json.loads(out.stdout)
     assert result["pairs"] == 1, out.stdout
     return result["trans_max"]
@@ -79,8 +80,8 @@ def offline_run(sequence, out_dir):
     """ply_slam_tum on the same frames with the same config: the reference the nodes must meet.
     Returns (frames tracked, ATE RMSE)."""
     config = os.path.join(PACKAGE_DIR, "config", "tum_fr1.yaml")
-    subprocess.run([tool("ply_slam_tum"), "--sequence", sequence, "--config", config, "--out",
-                    out_dir], check=True, capture_output=True)
+    checked_run.run([tool("ply_slam_tum"), "--sequence", sequence, "--config", config, "--out",
+                     out_dir])
     ate = ate_rmse(sequence, os.path.join(out_dir, "CameraTrajectory.txt"))
     return ate["pairs"], ate["rmse"]
 
@@ -281,8 +282,8 @@ def load_saved_map(sequence, folder, work):
     """ply_slam_tum on the sequence's first 3 frames in the map saved in `folder`: the "map"
     part of its summary.json (keyframes_loaded, first_tracked_frame, ...)."""
     out = os.path.join(work, "again")
-    subprocess.run([tool("ply_slam_tum"), "--sequence", sequence, "--config",
-                    os.path.join(PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out", out,
-                    "--max-frames", "3", "--map", folder], check=True, capture_output=True)
+    checked_run.run([tool("ply_slam_tum"), "--sequence", sequence, "--config",
+                     os.path.join(PACKAGE_DIR, "config", "tum_fr1.yaml"), "--out", out,
+                     "--max-frames", "3", "--map", folder])
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)["map"]

@@ -15,6 +15,7 @@ import unittest
 import rospy
 import rostest
 
+import checked_run
 import ros_test_support as support
 
 TRACKER = "/ply_slam/tracking_node"
@@ -29,7 +30,7 @@ class TrackerRestart(unittest.TestCase):
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= 3, 60))
         first_keyframes = stats.get("keyframes")
         first_tracked = stats.get("tracked")
-        subprocess.run(["rosnode", "kill", TRACKER], check=True, capture_output=True)
+        checked_run.run(["rosnode", "kill", TRACKER])
         time.sleep(2)  # frames go by untracked
         stats.values = {}
         tracker = subprocess.Popen([support.tool("tracking_node"), "__name:=tracking_node",

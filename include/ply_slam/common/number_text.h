@@ -14,5 +14,8 @@ std::optional<long> parseWholeNumber(const std::string& text, long min, long max
 std::optional<double> parseRealNumber(const std::string& text);
 // An image size "WxH" (e.g. "640x480"), each side in [1, 100000]: (width, height), or nothing.
 std::optional<std::pair<int, int>> parseImageSize(const std::string& text);
+// The shortest text that reads back as exactly `value` ("517.3", "517.30000000000001"): two
+// numbers that differ never print the same.
+std::string exactText(double value);
 
 }  // namespace ply_slam

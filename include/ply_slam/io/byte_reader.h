@@ -45,7 +45,10 @@ class ByteReader {
   size_t offset_ = 0;
 };
 
-// Every byte of a file; none when it cannot be opened or read.
-std::optional<std::vector<uint8_t>> readFileBytes(const std::string& path);
+// Every byte of a file; none when it cannot be opened or read, and then `why` (when given)
+// says why: missing, a directory, a named pipe (refused before opening it: it would block),
+// a read error.
+std::optional<std::vector<uint8_t>> readFileBytes(const std::string& path,
+                                                  std::string* why = nullptr);
 
 }  // namespace ply_slam

@@ -5,8 +5,8 @@
 
 namespace ply_slam {
 
-// cv::imwrite (format from the extension) through AtomicFile: the image is whole or absent;
-// a failure throws an error naming the file.
+// Encoded as the extension says (cv::imencode) and written through AtomicFile: the image is whole
+// or absent; a failure throws an error naming the file.
 void writeImageFile(const std::string& path, const cv::Mat& image);
 
 }  // namespace ply_slam

@@ -42,6 +42,9 @@ class TumSequence {
 
   bool hasGroundTruth() const { return !ground_truth_.empty(); }
   const Trajectory& groundTruth() const { return ground_truth_; }
+  // Why a groundtruth.txt that is there gives no ground truth (a directory, a named pipe, no
+  // poses in it), naming the file; empty when it gives one or is not there.
+  const std::string& groundTruthProblem() const { return ground_truth_problem_; }
 
   // Reads frame i. depth_factor converts 16-bit depth to metres (TUM: 5000).
   // Throws naming the file when an image is missing, unreadable, of the wrong type
@@ -49,9 +52,12 @@ class TumSequence {
   RgbdImages load(size_t i, double depth_factor) const;
 
  private:
+  void readGroundTruth(const std::string& path);
+
   std::string folder_;
   std::vector<RgbdRecord> records_;
   Trajectory ground_truth_;
+  std::string ground_truth_problem_;
   size_t unassociated_ = 0;
   bool used_associations_file_ = false;
 };
