@@ -10,14 +10,14 @@
 namespace ply_slam {
 namespace {
 
-constexpr int kWidth = 760, kHeight = 600;
+constexpr int kPlotWidth = 760, kPlotHeight = 600;
 constexpr int kLeft = 70, kRight = 20, kTop = 50, kBottom = 60;
-constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+constexpr int kPlotFont = cv::FONT_HERSHEY_SIMPLEX;
 const cv::Scalar kColours[] = {{200, 120, 0}, {0, 150, 0},   {0, 140, 255},
                                {0, 0, 210},   {150, 0, 150}, {90, 90, 90}};
 
 cv::Point toPixel(double recall, double precision) {
-  const double w = kWidth - kLeft - kRight, h = kHeight - kTop - kBottom;
+  const double w = kPlotWidth - kLeft - kRight, h = kPlotHeight - kTop - kBottom;
   return {kLeft + static_cast<int>(recall * w), kTop + static_cast<int>((1.0 - precision) * h)};
 }
 
@@ -28,12 +28,12 @@ void drawAxes(cv::Mat& image) {
     cv::line(image, toPixel(0, v), toPixel(1, v), {225, 225, 225});
     char text[8];
     std::snprintf(text, sizeof(text), "%.1f", v);
-    cv::putText(image, text, toPixel(v, 0) + cv::Point(-12, 20), kFont, 0.4, {0, 0, 0});
-    cv::putText(image, text, toPixel(0, v) + cv::Point(-35, 5), kFont, 0.4, {0, 0, 0});
+    cv::putText(image, text, toPixel(v, 0) + cv::Point(-12, 20), kPlotFont, 0.4, {0, 0, 0});
+    cv::putText(image, text, toPixel(0, v) + cv::Point(-35, 5), kPlotFont, 0.4, {0, 0, 0});
   }
   cv::rectangle(image, toPixel(0, 1), toPixel(1, 0), {120, 120, 120});
-  cv::putText(image, "recall", {kWidth / 2 - 20, kHeight - 15}, kFont, 0.5, {0, 0, 0});
-  cv::putText(image, "precision", {5, kTop - 12}, kFont, 0.5, {0, 0, 0});
+  cv::putText(image, "recall", {kPlotWidth / 2 - 20, kPlotHeight - 15}, kPlotFont, 0.5, {0, 0, 0});
+  cv::putText(image, "precision", {5, kTop - 12}, kPlotFont, 0.5, {0, 0, 0});
 }
 
 // Steps as the detector moves: from (0, 1) through each threshold's (recall, precision).
@@ -51,9 +51,9 @@ void drawCurve(cv::Mat& image, const PrCurve& curve, const cv::Scalar& colour, i
 void writePrPlot(const std::string& png_path,
                  const std::vector<std::pair<std::string, PrCurve>>& curves,
                  const std::string& title) {
-  cv::Mat image(kHeight, kWidth, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::Mat image(kPlotHeight, kPlotWidth, CV_8UC3, cv::Scalar(255, 255, 255));
   drawAxes(image);
-  cv::putText(image, title, {kLeft, 25}, kFont, 0.5, {0, 0, 0});
+  cv::putText(image, title, {kLeft, 25}, kPlotFont, 0.5, {0, 0, 0});
   const int n = static_cast<int>(sizeof(kColours) / sizeof(kColours[0]));
   for (size_t i = 0; i < curves.size(); ++i) {
     const cv::Scalar& colour = kColours[i % n];
@@ -64,7 +64,7 @@ void writePrPlot(const std::string& png_path,
                   curves[i].second.average_precision, curves[i].second.recall_at_full_precision);
     const cv::Point at = toPixel(0.03, 0.30) + cv::Point(0, 22 * static_cast<int>(i));
     cv::line(image, at + cv::Point(0, -4), at + cv::Point(25, -4), colour, 2);
-    cv::putText(image, legend, at + cv::Point(32, 0), kFont, 0.45, {0, 0, 0});
+    cv::putText(image, legend, at + cv::Point(32, 0), kPlotFont, 0.45, {0, 0, 0});
   }
   writeImageFile(png_path, image);
 }
