@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "ply_slam/common/rotation_check.h"
+
 namespace ply_slam {
 namespace {
 
@@ -16,9 +18,7 @@ bool usableCoordinates(const Eigen::Vector3d& v) {
 std::string poseProblem(const Eigen::Isometry3d& T) {
   if (!T.matrix().allFinite()) return "a pose that is not finite";
   if (!usableCoordinates(T.translation())) return "a position beyond +-1e9 m";
-  const Eigen::Matrix3d R = T.linear();
-  const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (off > 1e-6 || R.determinant() < 0) return "a rotation that is not a rotation matrix";
+  if (!isRotationMatrix(T.linear())) return "a rotation that is not a rotation matrix";
   return "";
 }
 

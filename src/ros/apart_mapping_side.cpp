@@ -185,11 +185,9 @@ void ApartMappingSide::askForHandOver(const std::string& when, uint64_t next_job
   HandOverMap ask;
   ask.request.next_job_sequence = next_job;
   ask.request.next_update_sequence = updates_sent_;
-  std::string why = callService(hand_over_client_, ask, std::chrono::seconds(30));
-  if (why.empty() && !ask.response.success) why = "refused: " + ask.response.message;
+  const std::string why = callService(hand_over_client_, ask, std::chrono::seconds(30));
   if (!why.empty()) {
-    ROS_ERROR_STREAM("mapping_node: asked " << hand_over_client_.getService() << " " << when
-                                            << " for the tracker's map: " << why
+    ROS_ERROR_STREAM("mapping_node: asked " << when << " for the tracker's map: " << why
                                             << "; the map goes on without what it missed");
     return;
   }

@@ -225,9 +225,8 @@ void MappingNode::onMissed(uint64_t missed, const std::string& what) {
     resend_requested_ = true;
   }
   std_srvs::Trigger trigger;
-  std::string why = callService(resend_client_, trigger, std::chrono::seconds(10));
-  if (why.empty() && trigger.response.success) return;
-  if (why.empty()) why = resend_client_.getService() + " refused: " + trigger.response.message;
+  const std::string why = callService(resend_client_, trigger, std::chrono::seconds(10));
+  if (why.empty()) return;
   ROS_ERROR_STREAM("mapping_node: " << why << ": the map stays partial");
   std::lock_guard<std::mutex> lock(mutex_);
   resend_requested_ = false;
@@ -499,8 +498,6 @@ void MappingNode::saveTrackerMap(const std::string& folder) {
   // The tracker gives itself 60 s to write the map between two frames, and says so.
   const std::string why = callService(tracker_save_map_client_, save, std::chrono::seconds(90));
   if (!why.empty()) throw FileWriteError(map_file, why);
-  if (!save.response.success)
-    throw FileWriteError(map_file, "the tracker answered: " + save.response.message);
 }
 
 bool MappingNode::saveMap(SaveToPath::Request& request, SaveToPath::Response& response) {

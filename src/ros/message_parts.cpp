@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ply_slam/common/rotation_check.h"
 #include "ply_slam/ros/image_layout.h"
 
 namespace ply_slam {
@@ -49,8 +50,7 @@ Eigen::Isometry3d fromRigidMsg(const RigidTransformMsg& m) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) T.matrix()(r, c) = m.matrix[4 * r + c];
   if (!T.matrix().allFinite()) throw std::invalid_argument("a rigid transform is not finite");
-  const Eigen::Matrix3d R = T.linear();
-  if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || R.determinant() < 0.0)
+  if (!isRotationMatrix(T.linear()))
     throw std::invalid_argument("a rigid transform's rotation is not a rotation");
   return T;
 }

@@ -442,9 +442,7 @@ void TrackingNode::askMapperForItsMap() {
     return;
   }
   MapForTracker ask;
-  std::string why = callService(client, ask, std::chrono::seconds(30));
-  if (why.empty() && !ask.response.success)
-    why = client.getService() + " refused: " + ask.response.message;
+  const std::string why = callService(client, ask, std::chrono::seconds(30));
   if (!why.empty()) {
     ROS_ERROR_STREAM("tracking_node: " << why << "; a map of its own");
     return;

@@ -12,8 +12,9 @@ namespace ply_slam {
 
 // A roscpp service call that gives up: ServiceClient::call waits for ever for a server that
 // stopped answering. The server must be up now (as call() wants it; `up_within` > 0 waits that
-// long for it) and answer within `timeout`. Returns "" on an answer (copied into `service`),
-// else why not, naming the service.
+// long for it) and answer within `timeout` with response.success (every ply_slam service has
+// success and message). Returns "" then (the answer copied into `service`), else why not,
+// naming the service; a refusal's answer is copied too.
 template <class Service>
 std::string callService(ros::ServiceClient& client, Service& service,
                         std::chrono::milliseconds timeout, double up_within_s = 0) {
@@ -28,6 +29,7 @@ std::string callService(ros::ServiceClient& client, Service& service,
   if (!answered) return name + " did not answer within " + std::to_string(seconds) + " s";
   if (!*answered) return name + " did not answer";
   service = *shared;
+  if (!service.response.success) return name + " refused: " + service.response.message;
   return "";
 }
 
