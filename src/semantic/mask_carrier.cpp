@@ -81,7 +81,9 @@ std::vector<Instance> MaskCarrier::carry(const Source& source, const cv::Mat& to
   std::vector<Instance> carried;
   if (source.instances.empty()) return carried;
   std::vector<cv::Mat> to_pyramid;
-  cv::buildOpticalFlowPyramid(to_gray, to_pyramid, cv::Size(kWindow, kWindow), kLevels);
+  // Lucas-Kanade differentiates only the image it tracks from: the one it tracks to needs no
+  // derivatives (the pyramid costs half as much).
+  cv::buildOpticalFlowPyramid(to_gray, to_pyramid, cv::Size(kWindow, kWindow), kLevels, false);
   for (size_t k = 0; k < source.instances.size(); ++k) {
     const Instance& instance = source.instances[k];
     const cv::Rect& box = source.boxes[k];
