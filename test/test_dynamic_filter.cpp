@@ -330,5 +330,35 @@ TEST(DelaunayConsistency, PersonCoveringTheImageIsNotTakenForTheStaticScene) {
   EXPECT_LT(background_label, 0.1);
 }
 
+// A small body (a hand, a face at the image's edge): three features that moved 10 cm together,
+// the others wrong matches. Whichever three they are, the body's own motion is found: every
+// triple a body of up to six has is tried (C(6, 3) = 20 < kBodyRansacRounds), none with a
+// repeated feature, which leaves the motion undetermined and scored the identity instead.
+TEST(DelaunayConsistency, SmallBodyMovedApartWhereverItsRigidCoreIs) {
+  const DelaunayConsistency check(noisyCamera(), {});
+  DelaunayConsistency::StaticFit fit;  // the camera stood still
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  const Eigen::Vector3d walked(0.1, 0.0, 0.0);
+  int placements = 0, found = 0;
+  for (size_t n = 3; n <= 6; ++n)
+    for (unsigned core = 0; core < (1u << n); ++core) {
+      if (__builtin_popcount(core) != 3) continue;
+      std::vector<FeatureCorrespondence> body;
+      for (size_t i = 0; i < n; ++i) {
+        FeatureCorrespondence f;
+        f.previous = Eigen::Vector3d(u(rng), u(rng), 1.5 + u(rng));
+        // Wrong matches land anywhere within 30 cm; the core moves as one.
+        f.current = (core >> i & 1u) ? Eigen::Vector3d(f.previous + walked)
+                                     : Eigen::Vector3d(u(rng), u(rng), 1.5 + u(rng));
+        body.push_back(f);
+      }
+      ++placements;
+      found += check.movedApart(body, fit);
+    }
+  EXPECT_EQ(placements, 1 + 4 + 10 + 20);
+  EXPECT_EQ(found, placements);
+}
+
 }  // namespace
 }  // namespace ply_slam

@@ -2,16 +2,40 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <set>
 
 #include "ply_slam/common/statistics.h"
 
 namespace ply_slam {
+namespace {
+
+// Up to `rounds` different triples of distinct indices below n, drawn at random with a seed
+// fixed by n (runs repeat); all of them when there are no more. A triple with a repeated index
+// would leave a motion undetermined.
+std::vector<std::array<size_t, 3>> distinctTriples(size_t n, int rounds) {
+  const size_t all = n * (n - 1) * (n - 2) / 6;
+  const size_t wanted = std::min(all, static_cast<size_t>(rounds));
+  std::mt19937 random(static_cast<unsigned>(n));
+  std::uniform_int_distribution<size_t> pick(0, n - 1);
+  std::set<std::array<size_t, 3>> drawn;
+  std::vector<std::array<size_t, 3>> triples;
+  while (triples.size() < wanted) {
+    std::array<size_t, 3> t{pick(random), pick(random), pick(random)};
+    std::sort(t.begin(), t.end());
+    if (t[0] == t[1] || t[1] == t[2] || !drawn.insert(t).second) continue;
+    triples.push_back(t);
+  }
+  return triples;
+}
+
+}  // namespace
 
 Eigen::Isometry3d DelaunayConsistency::rigidMotion(
     const std::vector<FeatureCorrespondence>& features, const std::vector<bool>& use) const {
@@ -250,14 +274,11 @@ std::vector<bool> DelaunayConsistency::carriedByStaticMotion(
 bool DelaunayConsistency::movedApart(const std::vector<FeatureCorrespondence>& body,
                                      const StaticFit& fit) const {
   if (body.size() < 3) return false;
-  // The body's own motion: a fixed seed, so that runs repeat.
-  std::mt19937 random(static_cast<unsigned>(body.size()));
-  std::uniform_int_distribution<size_t> pick(0, body.size() - 1);
   std::vector<bool> best;
   size_t best_count = 0;
-  for (int round = 0; round < kBodyRansacRounds; ++round) {
+  for (const std::array<size_t, 3>& triple : distinctTriples(body.size(), kBodyRansacRounds)) {
     std::vector<bool> use(body.size(), false);
-    for (int k = 0; k < 3; ++k) use[pick(random)] = true;
+    for (size_t k : triple) use[k] = true;
     const Eigen::Isometry3d own = rigidMotion(body, use);
     std::vector<bool> follows(body.size());
     size_t count = 0;
