@@ -93,10 +93,12 @@ evaluate() {
 add_row() {
   local name="$1" method="$2" dir="$3" timing="$4" run_ok="$5"
   if [ "$run_ok" -ne 0 ]; then
-    echo "| $name | $method | failed | failed | failed | failed | failed | failed | failed |" >>"$ROWS"
+    echo "| $name | $method | failed | failed | failed | failed | failed | failed | failed | failed | failed |" >>"$ROWS"
     return
   fi
   echo "| $name | $method | $(json_value "$dir/ate.json" rmse .4f)" \
+    "| $(json_value "$dir/ate.json" sim3_rmse .4f)" \
+    "| $(json_value "$dir/ate.json" sim3_scale .3f)" \
     "| $(json_value "$dir/rpe.json" trans_rmse .4f)" \
     "| $(json_value "$dir/rpe.json" rot_rmse_deg .3f)" \
     "| $(json_value "$dir/rpe_1s.json" trans_rmse .4f)" \
@@ -156,12 +158,13 @@ trap 'rm -f "$ROWS" "$SECTION"' EXIT
   echo "  frame (features + tracking)."
   echo "- OpenCV RgbdOdometry: \`ply_slam_rgbd_odometry\`, opencv_contrib \`rgbd::RgbdOdometry\`"
   echo "  with default parameters, frame to frame, no map; ms per frame = median odometry time."
-  echo "- ATE: RMSE after rigid alignment (no scale); RPE: RMSE over consecutive frames and"
+  echo "- ATE: RMSE after rigid alignment (no scale); beside it with scale (Sim(3)) and the scale"
+  echo "  fitted (> 1: the estimate is smaller than the truth); RPE: RMSE over consecutive frames and"
   echo "  over 1 s; largest jump: the largest translation error between consecutive frames;"
   echo "  lost: frames ply_slam could not track (RgbdOdometry reports none)."
   echo
-  echo "| sequence | method | ATE RMSE (m) | RPE trans (m/frame) | RPE rot (deg/frame) | RPE trans (m/s) | largest jump (m) | lost | ms per frame |"
-  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| sequence | method | ATE RMSE (m) | ATE Sim(3) (m) | scale | RPE trans (m/frame) | RPE rot (deg/frame) | RPE trans (m/s) | largest jump (m) | lost | ms per frame |"
+  echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   cat "$ROWS"
   echo "<!-- benchmark:end -->"
 } >"$SECTION"

@@ -86,6 +86,24 @@ TEST(Ate, RigidlyMovedCopyHasZeroErrorAndAlignmentIsRecovered) {
   EXPECT_LT(maxAbsDifference(ate.T_gt_est, T.inverse()), 1e-9);
 }
 
+TEST(Ate, ScaledCopyIsAlignedBySimilarityNotByRigidMotion) {
+  // The estimate 1/1.15 the size of the truth (a depth sensor reading 13 % short), moved.
+  const Trajectory gt = makeTrajectory(60);
+  const Eigen::Isometry3d T =
+      makePose(Eigen::Vector3d(0.3, -0.5, 0.8), 0.7, Eigen::Vector3d(1.5, -2.0, 0.3));
+  Trajectory est = transformed(T, gt);
+  for (StampedPose& pose : est) pose.T_wc.translation() /= 1.15;
+  const SimilarityAteResult sim = computeAteSimilarity(gt, est);
+  EXPECT_EQ(sim.translation.count, 60u);
+  EXPECT_NEAR(sim.scale, 1.15, 1e-9);
+  EXPECT_LT(sim.translation.rmse, 1e-9);
+  EXPECT_GT(computeAte(gt, est).translation.rmse, 1e-3);  // a rigid motion cannot fit it
+  // Unscaled, the two alignments agree.
+  const SimilarityAteResult same = computeAteSimilarity(gt, transformed(T, gt));
+  EXPECT_NEAR(same.scale, 1.0, 1e-9);
+  EXPECT_THROW(alignSimilarity({}, {}), std::invalid_argument);
+}
+
 TEST(Ate, AlignRigidRecoversTransformOfPoints) {
   std::vector<Eigen::Vector3d> gt, est;
   const Eigen::Isometry3d T =

@@ -15,34 +15,64 @@ Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& m) {
   return svd.matrixU() * signs.asDiagonal() * svd.matrixV().transpose();
 }
 
-Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
-                             const std::vector<Eigen::Vector3d>& gt) {
+namespace {
+
+// Both sets' means and the rotation that best maps the centred estimate onto the centred
+// ground truth: the cross-covariance's SVD (Umeyama 1991; the rotation does not depend on a
+// scale).
+struct Centred {
+  Eigen::Vector3d est_mean = Eigen::Vector3d::Zero(), gt_mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotation;
+};
+
+Centred centredRotation(const std::vector<Eigen::Vector3d>& est,
+                        const std::vector<Eigen::Vector3d>& gt, const char* who) {
   if (est.size() != gt.size() || est.empty()) {
-    throw std::invalid_argument("alignRigid: need equally many (>= 1) points, got " +
+    throw std::invalid_argument(std::string(who) + ": need equally many (>= 1) points, got " +
                                 std::to_string(est.size()) + " estimated and " +
                                 std::to_string(gt.size()) + " ground-truth points");
   }
+  Centred c;
   const double n = static_cast<double>(est.size());
-  Eigen::Vector3d est_mean = Eigen::Vector3d::Zero(), gt_mean = Eigen::Vector3d::Zero();
   for (size_t k = 0; k < est.size(); ++k) {
-    est_mean += est[k];
-    gt_mean += gt[k];
+    c.est_mean += est[k];
+    c.gt_mean += gt[k];
   }
-  est_mean /= n;
-  gt_mean /= n;
-
-  // Cross-covariance of the centred point sets; its SVD gives the rotation that best maps the
-  // estimate onto the ground truth (Umeyama 1991 without the scale term).
+  c.est_mean /= n;
+  c.gt_mean /= n;
   Eigen::Matrix3d cross = Eigen::Matrix3d::Zero();
-  for (size_t k = 0; k < est.size(); ++k) {
-    cross += (gt[k] - gt_mean) * (est[k] - est_mean).transpose();
-  }
-  const Eigen::Matrix3d rotation = nearestRotation(cross);
+  for (size_t k = 0; k < est.size(); ++k)
+    cross += (gt[k] - c.gt_mean) * (est[k] - c.est_mean).transpose();
+  c.rotation = nearestRotation(cross);
+  return c;
+}
 
+}  // namespace
+
+Eigen::Isometry3d alignRigid(const std::vector<Eigen::Vector3d>& est,
+                             const std::vector<Eigen::Vector3d>& gt) {
+  const Centred c = centredRotation(est, gt, "alignRigid");
   Eigen::Isometry3d T_gt_est = Eigen::Isometry3d::Identity();
-  T_gt_est.linear() = rotation;
-  T_gt_est.translation() = gt_mean - rotation * est_mean;
+  T_gt_est.linear() = c.rotation;
+  T_gt_est.translation() = c.gt_mean - c.rotation * c.est_mean;
   return T_gt_est;
+}
+
+SimilarityAlignment alignSimilarity(const std::vector<Eigen::Vector3d>& est,
+                                    const std::vector<Eigen::Vector3d>& gt) {
+  const Centred c = centredRotation(est, gt, "alignSimilarity");
+  // The least-squares scale once the rotation is fixed: sum g.(R e) / sum |e|^2, centred.
+  double along = 0.0, spread = 0.0;
+  for (size_t k = 0; k < est.size(); ++k) {
+    const Eigen::Vector3d e = c.rotation * (est[k] - c.est_mean);
+    along += (gt[k] - c.gt_mean).dot(e);
+    spread += e.squaredNorm();
+  }
+  SimilarityAlignment a;
+  a.rotation = c.rotation;
+  a.scale = spread > 0.0 ? along / spread : 1.0;  // one point repeated: no size to scale
+  a.translation = c.gt_mean - a.scale * (c.rotation * c.est_mean);
+  return a;
 }
 
 }  // namespace ply_slam

@@ -129,6 +129,17 @@ AteResult computeAte(const Trajectory& gt, const Trajectory& est, double max_dt)
   return ateWith(positions, alignRigid(positions.est, positions.gt));
 }
 
+SimilarityAteResult computeAteSimilarity(const Trajectory& gt, const Trajectory& est,
+                                         double max_dt) {
+  const AssociatedPositions positions = associatedPositions(gt, est, max_dt);
+  const SimilarityAlignment align = alignSimilarity(positions.est, positions.gt);
+  std::vector<double> errors;
+  errors.reserve(positions.gt.size());
+  for (size_t k = 0; k < positions.gt.size(); ++k)
+    errors.push_back((positions.gt[k] - align(positions.est[k])).norm());
+  return {summarize(std::move(errors)), align.scale};
+}
+
 AteResult computeAteInFrame(const Trajectory& gt, const Trajectory& est,
                             const Eigen::Isometry3d& T_gt_est, double max_dt) {
   return ateWith(associatedPositions(gt, est, max_dt), T_gt_est);

@@ -182,10 +182,17 @@ int runAte(const Options& options, const ply_slam::Trajectory& gt,
                 options.max_dt);
   const ply_slam::ErrorStats& s = ate.translation;
   requireFinite(s, "the ATE");
+  // Beside it the estimate's scale against the truth (a fitted map frame has none of its own).
+  std::optional<ply_slam::SimilarityAteResult> sim;
+  if (options.align_with.empty()) sim = ply_slam::computeAteSimilarity(gt, est, options.max_dt);
   if (options.json) {
     std::cout << "{\"pairs\": " << s.count << ", \"rmse\": " << number(s.rmse)
               << ", \"mean\": " << number(s.mean) << ", \"median\": " << number(s.median)
-              << ", \"max\": " << number(s.max) << "}\n";
+              << ", \"max\": " << number(s.max);
+    if (sim)
+      std::cout << ", \"sim3_scale\": " << number(sim->scale)
+                << ", \"sim3_rmse\": " << number(sim->translation.rmse);
+    std::cout << "}\n";
   } else {
     const Eigen::Vector3d t = ate.T_gt_est.translation();
     const double angle_deg = Eigen::AngleAxisd(ate.T_gt_est.linear()).angle() * kDegreesPerRadian;
@@ -200,6 +207,9 @@ int runAte(const Options& options, const ply_slam::Trajectory& gt,
               << "  max           " << fixed(s.max) << " m\n"
               << "  alignment     t = (" << fixed(t.x()) << ", " << fixed(t.y()) << ", "
               << fixed(t.z()) << ") m, rotation " << fixed(angle_deg) << " deg\n";
+    if (sim)
+      std::cout << "  with scale    rmse " << fixed(sim->translation.rmse) << " m, scale "
+                << fixed(sim->scale) << " (Sim(3): > 1, the estimate is smaller)\n";
   }
   if (!options.plot_path.empty()) {
     ply_slam::Trajectory aligned = est;

@@ -494,7 +494,9 @@ Evaluation evaluate(const TumSequence& sequence, const Trajectory& trajectory) {
   try {
     const AteResult ate = computeAte(sequence.groundTruth(), trajectory);
     const RpeResult rpe = computeRpeFrames(sequence.groundTruth(), trajectory, 1);
+    const SimilarityAteResult sim = computeAteSimilarity(sequence.groundTruth(), trajectory);
     e.fields["ate"] = statsJson(ate.translation);
+    e.fields["ate_sim3"] = {{"scale", rounded(sim.scale)}, {"rmse", rounded(sim.translation.rmse)}};
     e.fields["rpe_translation_per_frame"] = statsJson(rpe.translation);
     e.fields["rpe_rotation_deg_per_frame"] = statsJson(rpe.rotation);
     for (auto& p : e.aligned) p.T_wc = ate.T_gt_est * p.T_wc;
@@ -502,7 +504,8 @@ Evaluation evaluate(const TumSequence& sequence, const Trajectory& trajectory) {
     t << std::fixed << std::setprecision(4) << "   ATE RMSE " << ate.translation.rmse << " m";
     e.title = t.str();
     std::cout << "ATE RMSE " << ate.translation.rmse << " m over " << ate.translation.count
-              << " frames; RPE " << rpe.translation.rmse << " m, " << rpe.rotation.rmse
+              << " frames (with scale: " << sim.translation.rmse << " m, scale " << sim.scale
+              << "); RPE " << rpe.translation.rmse << " m, " << rpe.rotation.rmse
               << " deg per frame\n";
   } catch (const std::exception& error) {
     e.error = file + " does not fit the run: " + error.what();

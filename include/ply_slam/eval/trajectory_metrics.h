@@ -18,6 +18,12 @@ struct AteResult {
   Eigen::Isometry3d T_gt_est = Eigen::Isometry3d::Identity();  // maps estimate into gt frame
 };
 
+// The ATE after a similarity alignment: what is left once the estimate's scale is fitted too.
+struct SimilarityAteResult {
+  ErrorStats translation;  // m, after alignment
+  double scale = 1.0;      // > 1: the estimate is smaller than the truth
+};
+
 struct RpeResult {
   ErrorStats translation;  // m
   ErrorStats rotation;     // degrees
@@ -29,6 +35,9 @@ double rotationAngleDeg(const Eigen::Matrix3d& R);
 // Absolute trajectory error, TUM definition: associate stamps within max_dt, align, RMSE etc.
 // Throws std::runtime_error when fewer than 3 pairs associate.
 AteResult computeAte(const Trajectory& gt, const Trajectory& est, double max_dt = 0.02);
+// The same aligned with a scale (Sim(3)).
+SimilarityAteResult computeAteSimilarity(const Trajectory& gt, const Trajectory& est,
+                                         double max_dt = 0.02);
 // The same with the alignment given, not fitted: a run in a loaded map is judged in that map's
 // frame, with the alignment of the run that made the map (a free fit would hide an offset).
 AteResult computeAteInFrame(const Trajectory& gt, const Trajectory& est,
