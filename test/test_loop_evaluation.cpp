@@ -125,15 +125,25 @@ TEST(LoopGroundTruth, TimeDistanceAngleAndOverlapAllCount) {
   const PinholeCamera c = smallCamera();
   LoopGroundTruthParams p;
   const GroundTruthView a = wallView(0, 0.0, 0.0);
-  EXPECT_TRUE(isTrueLoop(a, wallView(1, 12.0, 0.1), c, p));
-  EXPECT_FALSE(isTrueLoop(a, wallView(1, 9.0, 0.1), c, p));       // too soon
-  EXPECT_FALSE(isTrueLoop(a, wallView(1, 12.0, 0.4), c, p));      // too far
-  EXPECT_FALSE(isTrueLoop(a, wallView(1, 12.0, 0.0, 25), c, p));  // turned too far
+  EXPECT_EQ(loopTruth(a, wallView(1, 12.0, 0.1), c, p), LoopTruth::kTrue);
+  EXPECT_EQ(loopTruth(a, wallView(1, 9.0, 0.1), c, p), LoopTruth::kFalse);  // too soon
+  // A step further or turned further, the same wall in view: neither way; beyond, false.
+  EXPECT_EQ(loopTruth(a, wallView(1, 12.0, 0.4), c, p), LoopTruth::kDontCare);
+  EXPECT_EQ(loopTruth(a, wallView(1, 12.0, 0.0, 25), c, p), LoopTruth::kDontCare);
+  EXPECT_EQ(loopTruth(a, wallView(1, 12.0, 0.7), c, p), LoopTruth::kFalse);
+  EXPECT_EQ(loopTruth(a, wallView(1, 12.0, 0.0, 45), c, p), LoopTruth::kFalse);
   GroundTruthView hidden = wallView(1, 12.0, 0.1);
   hidden.depth.setTo(1.0f);  // something right in front of the camera
-  EXPECT_FALSE(isTrueLoop(a, hidden, c, p));
+  EXPECT_EQ(loopTruth(a, hidden, c, p), LoopTruth::kFalse);
+  GroundTruthView hidden_further = wallView(1, 12.0, 0.4);
+  hidden_further.depth.setTo(1.0f);
+  EXPECT_EQ(loopTruth(a, hidden_further, c, p), LoopTruth::kFalse);  // in the band, no overlap
   p.min_gap_s = 5.0;
-  EXPECT_TRUE(isTrueLoop(a, wallView(1, 9.0, 0.1), c, p));
+  EXPECT_EQ(loopTruth(a, wallView(1, 9.0, 0.1), c, p), LoopTruth::kTrue);
+  // The bounds are the truth's own: with the false ones at the true ones there is no band.
+  p.false_distance_m = p.max_distance_m;
+  p.false_angle_deg = p.max_angle_deg;
+  EXPECT_EQ(loopTruth(a, wallView(1, 12.0, 0.4), c, p), LoopTruth::kFalse);
 }
 
 }  // namespace

@@ -142,6 +142,24 @@ TEST(ToolsCommandLine, AFolderAsConfigAndAModelWithoutYoloAreErrors) {
   EXPECT_TRUE(contains(r.err, "--segmenter yolo")) << r.err;
 }
 
+// The false-loop bounds of ply_slam_loops lie at or beyond the true ones: a band of negative
+// width would make a pair true and false at once.
+TEST(ToolsCommandLine, LoopsFalseBoundsBelowTheTrueOnesAreRefused) {
+  TempDir dir;
+  const std::string args = "--sequence " + quoted(test::sharedPath(kSequence)) + " --config " +
+                           quoted(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml") +
+                           " --out out";
+  for (const std::string& bad :
+       {"--false-distance-m 0.2", "--false-angle-deg 10", "--false-distance-m nan",
+        "--false-angle-deg x"}) {
+    const Result r = run(dir, "ply_slam_loops", args + " " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, bad.substr(0, bad.find(' '))) && contains(r.err, ">="))
+        << bad << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
 // The sequence's images with a ground truth 1000 s later: nothing to pair with.
 std::string sequenceWithLateGroundTruth(const TempDir& dir) {
   const fs::path source = test::sharedPath(kSequence);

@@ -37,14 +37,19 @@ double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const Pin
   return valid > 0 ? static_cast<double>(seen) / valid : 0.0;
 }
 
-bool isTrueLoop(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
-                const LoopGroundTruthParams& params) {
-  if (std::abs(a.stamp - b.stamp) <= params.min_gap_s) return false;
+LoopTruth loopTruth(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
+                    const LoopGroundTruthParams& params) {
+  if (std::abs(a.stamp - b.stamp) <= params.min_gap_s) return LoopTruth::kFalse;
   const Eigen::Isometry3d T_ab = a.T_wc.inverse() * b.T_wc;
-  if (T_ab.translation().norm() > params.max_distance_m) return false;
-  if (rotationAngleDeg(T_ab.linear()) > params.max_angle_deg) return false;
-  return std::max(viewOverlap(a, b, camera, params), viewOverlap(b, a, camera, params)) >=
-         params.min_overlap;
+  const double distance = T_ab.translation().norm();
+  const double angle = rotationAngleDeg(T_ab.linear());
+  if (distance > params.false_distance_m || angle > params.false_angle_deg)
+    return LoopTruth::kFalse;
+  if (std::max(viewOverlap(a, b, camera, params), viewOverlap(b, a, camera, params)) <
+      params.min_overlap)
+    return LoopTruth::kFalse;
+  return distance <= params.max_distance_m && angle <= params.max_angle_deg ? LoopTruth::kTrue
+                                                                            : LoopTruth::kDontCare;
 }
 
 }  // namespace ply_slam

@@ -1,10 +1,13 @@
 // Place recognition on a TUM folder (PAPER.md §3.3):
 //   ply_slam_loops --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]
 //                  [--model ONNX --input WxH] [--max-frames N] [--min-gap-s 10]
+//                  [--false-distance-m 0.6] [--false-angle-deg 40]
 // Tracks the sequence with the SLAM system, puts every keyframe into the loop detector's
 // database, defines the true loops from groundtruth.txt and writes pr.csv, pr.png (precision-
-// recall over the threshold alpha for ORB only, LBD only, ORB+LBD, ORB+LBD+instances) and
-// summary.json (counts, areas, loops accepted after consistency and the geometric check).
+// recall over the threshold alpha for ORB only, LBD only, ORB+LBD, ORB+LBD+instances),
+// pr_band.png (the same with the pairs between the true and the false bounds counting neither
+// way) and summary.json (counts, areas, loops accepted after consistency and the geometric
+// check, under both truths).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -42,10 +45,14 @@ namespace {
 constexpr const char* kUsage =
     "usage: ply_slam_loops --sequence DIR --config FILE --out DIR [--segmenter none|masks|yolo]\n"
     "                      [--model ONNX --input WxH] [--max-frames N] [--min-gap-s S]\n"
+    "                      [--false-distance-m M] [--false-angle-deg D]\n"
     "  --segmenter masks: instance masks from DIR/masks and DIR/instances.txt; yolo: YOLOv8-seg\n"
     "    (model from the config's segmentation section or --model/--input)\n"
     "  --min-gap-s: true loops are keyframes more than this many seconds apart (default 10);\n"
     "    the detector's loop.min_candidate_age_s is set to it\n"
+    "  true loops: within 0.3 m and 20 deg, views overlapping; --false-distance-m /\n"
+    "    --false-angle-deg: false beyond these (default 0.6 m, 40 deg) or without overlap; the\n"
+    "    pairs between count neither way in the curves and counts 'with_band'\n"
     "  --keep-long-links: keep the map's covisibility links between keyframes more than\n"
     "    --min-gap-s apart (default: dropped, as if tracking had not reconnected them; a\n"
     "    drift-free tracker in a small room links every keyframe to every other, and covisible\n"
@@ -69,6 +76,14 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
     if (!s || *s < 0)
       throw UsageError("--min-gap-s needs a number of seconds >= 0, got '" + value + "'");
     o.truth.min_gap_s = *s;
+  } else if (arg == "--false-distance-m" || arg == "--false-angle-deg") {
+    const bool metres = arg == "--false-distance-m";
+    const double at_least = metres ? o.truth.max_distance_m : o.truth.max_angle_deg;
+    const auto x = parseRealNumber(value);
+    if (!x || *x < at_least)
+      throw UsageError(arg + " needs a number >= the true loops' bound " + exactText(at_least) +
+                       ", got '" + value + "'");
+    (metres ? o.truth.false_distance_m : o.truth.false_angle_deg) = *x;
   }
 }
 
@@ -77,8 +92,9 @@ Options parse(int argc, char** argv) {
   CommandLine line;
   line.usage_text = kUsage;
   line.flags = {"--keep-long-links"};
-  line.options = {"--sequence", "--config", "--out",        "--segmenter",
-                  "--model",    "--input",  "--max-frames", "--min-gap-s"};
+  line.options = {
+      "--sequence", "--config",     "--out",       "--segmenter",        "--model",
+      "--input",    "--max-frames", "--min-gap-s", "--false-distance-m", "--false-angle-deg"};
   line.on_flag = [&](const std::string&) { o.keep_long_links = true; };
   line.on_option = [&](const std::string& arg, const std::string& value) {
     setOption(o, arg, value);
@@ -169,9 +185,15 @@ void copyCovisibility(const Map& map, double max_link_s, LoopDetector& detector)
 }
 
 struct TruthTable {
-  std::set<std::pair<long, long>> pairs;  // (query, earlier keyframe)
-  std::set<long> queries;                 // keyframes with at least one true loop
+  std::set<std::pair<long, long>> pairs;      // (query, earlier keyframe)
+  std::set<std::pair<long, long>> dont_care;  // pairs in the band that counts neither way
+  std::set<long> queries;                     // keyframes with at least one true loop
   long views_with_pose = 0;
+
+  LoopTruth of(long query, long candidate) const {
+    if (pairs.count({query, candidate})) return LoopTruth::kTrue;
+    return dont_care.count({query, candidate}) ? LoopTruth::kDontCare : LoopTruth::kFalse;
+  }
 };
 
 TruthTable trueLoops(std::vector<GroundTruthView>& views, const TumSequence& sequence,
@@ -193,7 +215,9 @@ TruthTable trueLoops(std::vector<GroundTruthView>& views, const TumSequence& seq
     const std::map<long, int>& covisible = detector.keyFrame(views[q].id).covisibility;
     for (size_t c = 0; c < q; ++c) {
       if (!posed[c] || covisible.count(views[c].id)) continue;
-      if (!isTrueLoop(views[q], views[c], small, params)) continue;
+      const LoopTruth truth = loopTruth(views[q], views[c], small, params);
+      if (truth == LoopTruth::kDontCare) t.dont_care.insert({views[q].id, views[c].id});
+      if (truth != LoopTruth::kTrue) continue;
       t.pairs.insert({views[q].id, views[c].id});
       t.queries.insert(views[q].id);
     }
@@ -236,7 +260,7 @@ std::optional<Best> bestNormalised(const LoopQueryScores& s, double VariantScore
 struct AcceptedLoop {
   long query = 0, candidate = 0;
   int inliers_3d = 0, reprojection_inliers = 0;
-  bool correct = false;  // a true loop as defined (time, distance, angle, overlap)
+  LoopTruth truth = LoopTruth::kFalse;  // as defined (time, distance, angle, overlap)
   // Ground truth of the pair: camera distance and angle, and how far the check's estimated
   // motion is from the true one (what a loop correction would get wrong).
   double gt_distance_m = 0.0, gt_angle_deg = 0.0, motion_error_m = 0.0, motion_error_deg = 0.0;
@@ -256,7 +280,7 @@ AcceptedLoop acceptedLoop(const GroundTruthView& query, const GroundTruthView& c
                        viewOverlap(candidate, query, small, params));
   a.inliers_3d = check.inliers_3d;
   a.reprojection_inliers = check.reprojection_inliers;
-  a.correct = truth.pairs.count({query.id, candidate.id}) > 0;
+  a.truth = truth.of(query.id, candidate.id);
   const Eigen::Isometry3d T_qc = query.T_wc.inverse() * candidate.T_wc;  // ground truth
   a.gt_distance_m = T_qc.translation().norm();
   a.gt_angle_deg = rotationAngleDeg(T_qc.linear());
@@ -271,7 +295,8 @@ struct DecisionRow {
   long query = 0, candidate = 0;
   size_t variant = 0;
   double normalised = 0.0, gt_distance_m = 0.0, gt_angle_deg = 0.0;
-  bool correct = false, query_has_loop = false;
+  LoopTruth truth = LoopTruth::kFalse;
+  bool query_has_loop = false;
 };
 
 // One candidate of one query: its raw scores, the query's reference scores and the pair's
@@ -281,7 +306,8 @@ struct CandidateRow {
   VariantScores reference_scores, raw;
   int instance_matches = 0;
   double gt_distance_m = 0.0, gt_angle_deg = 0.0;
-  bool correct = false, query_has_loop = false;
+  LoopTruth truth = LoopTruth::kFalse;
+  bool query_has_loop = false;
 };
 
 // What the detector did over the whole sequence.
@@ -289,7 +315,8 @@ struct LoopRun {
   std::vector<DecisionRow> rows;  // the curves' decisions
   std::vector<CandidateRow> candidate_rows;
   std::vector<AcceptedLoop> accepted;
-  long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_false = 0;
+  long geometry_checked = 0, geometry_passed_true = 0, geometry_passed_dont_care = 0,
+       geometry_passed_false = 0;
   long judged = 0, candidates = 0, covisible = 0;  // queries with a reference; sums over queries
   std::vector<double> score_ms, check_ms;
 };
@@ -308,7 +335,7 @@ void recordCandidates(const GroundTruthView& query, const LoopQueryScores& score
     const Eigen::Isometry3d T_qc = query.T_wc.inverse() * by_id.at(c.id)->T_wc;
     row.gt_distance_m = T_qc.translation().norm();
     row.gt_angle_deg = rotationAngleDeg(T_qc.linear());
-    row.correct = truth.pairs.count({query.id, c.id}) > 0;
+    row.truth = truth.of(query.id, c.id);
     row.query_has_loop = truth.queries.count(query.id) > 0;
     rows.push_back(row);
   }
@@ -334,10 +361,9 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
     for (size_t v = 0; v < kNumVariants; ++v) {
       const std::optional<Best> best = bestNormalised(d.scores, kVariants[v].score);
       if (!best) continue;
-      const bool correct = truth.pairs.count({view.id, best->id}) > 0;
       const Eigen::Isometry3d T_qc = view.T_wc.inverse() * by_id.at(best->id)->T_wc;
       run.rows.push_back({view.id, best->id, v, best->normalised, T_qc.translation().norm(),
-                          rotationAngleDeg(T_qc.linear()), correct,
+                          rotationAngleDeg(T_qc.linear()), truth.of(view.id, best->id),
                           truth.queries.count(view.id) > 0});
     }
     if (d.loop)
@@ -347,29 +373,42 @@ LoopRun runQueries(LoopDetector& detector, const std::vector<GroundTruthView>& v
     if (!best) continue;
     ++run.geometry_checked;
     if (!detector.verify(view.id, best->id).accepted) continue;
-    (truth.pairs.count({view.id, best->id}) ? run.geometry_passed_true
-                                            : run.geometry_passed_false)++;
+    const LoopTruth judged = truth.of(view.id, best->id);
+    (judged == LoopTruth::kTrue       ? run.geometry_passed_true
+     : judged == LoopTruth::kDontCare ? run.geometry_passed_dont_care
+                                      : run.geometry_passed_false)++;
   }
   return run;
 }
 
+// The two ways a decision is judged: by the definition (true or not), or with the band
+// between the true and the false bounds counting neither way (its decisions left out).
+enum class Judged { kByDefinition, kWithBand };
+
 // One variant's decisions, as the precision-recall curve takes them.
-std::vector<ScoredDecision> decisionsOf(const std::vector<DecisionRow>& rows, size_t variant) {
+std::vector<ScoredDecision> decisionsOf(const std::vector<DecisionRow>& rows, size_t variant,
+                                        Judged judged) {
   std::vector<ScoredDecision> out;
   for (const DecisionRow& r : rows)
-    if (r.variant == variant) out.push_back({r.normalised, r.correct});
+    if (r.variant == variant &&
+        (judged == Judged::kByDefinition || r.truth != LoopTruth::kDontCare))
+      out.push_back({r.normalised, r.truth == LoopTruth::kTrue});
   return out;
+}
+
+const char* truthWord(LoopTruth t) {
+  return t == LoopTruth::kTrue ? "true" : t == LoopTruth::kDontCare ? "dont_care" : "false";
 }
 
 void writeDecisions(const fs::path& out, const std::vector<DecisionRow>& rows) {
   AtomicFile file((out / "decisions.csv").string());
   std::ostream& csv = file.stream();
-  csv << "query,variant,candidate,normalised_score,true_loop,query_has_true_loop,gt_distance_m,"
+  csv << "query,variant,candidate,normalised_score,truth,query_has_true_loop,gt_distance_m,"
          "gt_angle_deg\n"
       << std::setprecision(6);
   for (const DecisionRow& r : rows)
     csv << r.query << ',' << kVariants[r.variant].name << ',' << r.candidate << ',' << r.normalised
-        << ',' << r.correct << ',' << r.query_has_loop << ',' << r.gt_distance_m << ','
+        << ',' << truthWord(r.truth) << ',' << r.query_has_loop << ',' << r.gt_distance_m << ','
         << r.gt_angle_deg << '\n';
   file.commit();
 }
@@ -378,29 +417,17 @@ void writeCandidates(const fs::path& out, const std::vector<CandidateRow>& rows)
   AtomicFile file((out / "candidates.csv").string());
   std::ostream& csv = file.stream();
   csv << "query,reference,candidate,ref_orb,ref_lbd,ref_orb_lbd,ref_full,orb,lbd,orb_lbd,full,"
-         "instance_matches,true_loop,query_has_true_loop,gt_distance_m,gt_angle_deg\n"
+         "instance_matches,truth,query_has_true_loop,gt_distance_m,gt_angle_deg\n"
       << std::setprecision(6);
   for (const CandidateRow& r : rows) {
     const VariantScores& f = r.reference_scores;
     csv << r.query << ',' << r.reference << ',' << r.candidate << ',' << f.points << ',' << f.lines
         << ',' << f.point_line << ',' << f.full << ',' << r.raw.points << ',' << r.raw.lines << ','
-        << r.raw.point_line << ',' << r.raw.full << ',' << r.instance_matches << ',' << r.correct
-        << ',' << r.query_has_loop << ',' << r.gt_distance_m << ',' << r.gt_angle_deg << '\n';
+        << r.raw.point_line << ',' << r.raw.full << ',' << r.instance_matches << ','
+        << truthWord(r.truth) << ',' << r.query_has_loop << ',' << r.gt_distance_m << ','
+        << r.gt_angle_deg << '\n';
   }
   file.commit();
-}
-
-void writeCurves(const fs::path& out, const std::vector<std::pair<std::string, PrCurve>>& curves,
-                 const std::string& title) {
-  AtomicFile csv_file((out / "pr.csv").string());
-  std::ostream& csv = csv_file.stream();
-  csv << "variant,threshold,detections,true_positives,precision,recall\n" << std::setprecision(6);
-  for (const auto& [name, curve] : curves)
-    for (const PrPoint& p : curve.points)
-      csv << name << ',' << p.threshold << ',' << p.detections << ',' << p.true_positives << ','
-          << p.precision << ',' << p.recall << '\n';
-  csv_file.commit();
-  writePrPlot((out / "pr.png").string(), curves, title);
 }
 
 std::string jsonNumber(double v) {
@@ -420,13 +447,62 @@ struct RunInfo {
   std::vector<double> add_ms;
 };
 
+// One curve's figures in summary.json.
+std::string curveJson(const PrCurve& c) {
+  std::ostringstream j;
+  j << "{\"auc\": " << jsonNumber(c.average_precision)
+    << ", \"recall_at_precision_1\": " << jsonNumber(c.recall_at_full_precision)
+    << ", \"alpha_at_precision_1\": " << jsonNumber(c.threshold_at_full_precision)
+    << ", \"decisions\": " << (c.points.empty() ? 0 : c.points.back().detections) << "}";
+  return j.str();
+}
+
+// Each variant's curve by the definition and with the band counting neither way.
+using Curves = std::vector<std::pair<std::string, PrCurve>>;
+struct BothCurves {
+  Curves by_definition, with_band;
+};
+
+BothCurves curvesOf(const LoopRun& run, const TruthTable& truth) {
+  BothCurves c;
+  const auto positives = static_cast<long>(truth.queries.size());
+  for (size_t v = 0; v < kNumVariants; ++v) {
+    c.by_definition.emplace_back(
+        kVariants[v].name,
+        precisionRecall(decisionsOf(run.rows, v, Judged::kByDefinition), positives));
+    c.with_band.emplace_back(
+        std::string(kVariants[v].name) + ", band",
+        precisionRecall(decisionsOf(run.rows, v, Judged::kWithBand), positives));
+  }
+  return c;
+}
+
+// pr.csv (both truths, column `truth`), pr.png (by the definition) and pr_band.png.
+void writeCurves(const fs::path& out, const BothCurves& curves, const std::string& title) {
+  AtomicFile csv_file((out / "pr.csv").string());
+  std::ostream& csv = csv_file.stream();
+  csv << "variant,truth,threshold,detections,true_positives,precision,recall\n"
+      << std::setprecision(6);
+  for (const auto& [truth, list] :
+       {std::pair{"by_definition", &curves.by_definition}, {"with_band", &curves.with_band}})
+    for (size_t v = 0; v < list->size(); ++v)
+      for (const PrPoint& p : (*list)[v].second.points)
+        csv << kVariants[v].name << ',' << truth << ',' << p.threshold << ',' << p.detections << ','
+            << p.true_positives << ',' << p.precision << ',' << p.recall << '\n';
+  csv_file.commit();
+  writePrPlot((out / "pr.png").string(), curves.by_definition, title);
+  writePrPlot((out / "pr_band.png").string(), curves.with_band,
+              title + ", the band counting neither way");
+}
+
 void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
-                  const TruthTable& truth, const LoopRun& run,
-                  const std::vector<std::pair<std::string, PrCurve>>& curves, double alpha) {
-  long correct = 0, consistent = 0;
+                  const TruthTable& truth, const LoopRun& run, const BothCurves& curves,
+                  double alpha) {
+  long correct = 0, dont_care = 0, consistent = 0;
   double worst_m = 0.0, worst_deg = 0.0;
   for (const AcceptedLoop& a : run.accepted) {
-    correct += a.correct;
+    correct += a.truth == LoopTruth::kTrue;
+    dont_care += a.truth == LoopTruth::kDontCare;
     consistent +=
         a.motion_error_m <= kMotionTolerance_m && a.motion_error_deg <= kMotionTolerance_deg;
     worst_m = std::max(worst_m, a.motion_error_m);
@@ -443,25 +519,29 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     << ", \"max_distance_m\": " << o.truth.max_distance_m
     << ", \"max_angle_deg\": " << o.truth.max_angle_deg
     << ", \"min_overlap\": " << o.truth.min_overlap
+    << ", \"false_distance_m\": " << o.truth.false_distance_m
+    << ", \"false_angle_deg\": " << o.truth.false_angle_deg
     << ", \"keyframes_with_ground_truth\": " << truth.views_with_pose
-    << ", \"pairs\": " << truth.pairs.size() << ", \"queries\": " << truth.queries.size()
-    << "},\n  \"queries\": {\"judged\": " << run.judged << ", \"mean_candidates\": "
+    << ", \"pairs\": " << truth.pairs.size() << ", \"dont_care_pairs\": " << truth.dont_care.size()
+    << ", \"queries\": " << truth.queries.size() << "},\n  \"queries\": {\"judged\": " << run.judged
+    << ", \"mean_candidates\": "
     << jsonNumber(double(run.candidates) / std::max<long>(1, info.keyframes))
     << ", \"mean_covisible\": "
     << jsonNumber(double(run.covisible) / std::max<long>(1, info.keyframes))
     << "},\n  \"variants\": {";
-  for (size_t v = 0; v < curves.size(); ++v) {
-    const PrCurve& c = curves[v].second;
-    j << (v ? ", " : "") << "\n    \"" << curves[v].first
-      << "\": {\"auc\": " << jsonNumber(c.average_precision)
-      << ", \"recall_at_precision_1\": " << jsonNumber(c.recall_at_full_precision)
-      << ", \"alpha_at_precision_1\": " << jsonNumber(c.threshold_at_full_precision)
-      << ", \"decisions\": " << (c.points.empty() ? 0 : c.points.back().detections) << "}";
-  }
+  for (size_t v = 0; v < curves.by_definition.size(); ++v)
+    j << (v ? ", " : "") << "\n    \"" << curves.by_definition[v].first
+      << "\": {\"by_definition\": " << curveJson(curves.by_definition[v].second)
+      << ", \"with_band\": " << curveJson(curves.with_band[v].second) << "}";
   j << "\n  },\n  \"accepted_loops\": {\"alpha\": " << alpha
     << ", \"count\": " << run.accepted.size() << ", \"correct\": " << correct
-    << ", \"false\": " << run.accepted.size() - correct << ", \"precision\": "
+    << ", \"dont_care\": " << dont_care
+    << ", \"false\": " << run.accepted.size() - correct - dont_care << ", \"precision\": "
     << jsonNumber(run.accepted.empty() ? 1.0 : double(correct) / run.accepted.size())
+    << ", \"precision_with_band\": "
+    << jsonNumber(run.accepted.size() == static_cast<size_t>(dont_care)
+                      ? 1.0
+                      : double(correct) / (run.accepted.size() - dont_care))
     << ", \"motion_within_tolerance\": " << consistent << ", \"motion_tolerance\": ["
     << kMotionTolerance_m << ", " << kMotionTolerance_deg
     << "], \"max_motion_error_m\": " << jsonNumber(worst_m)
@@ -470,8 +550,8 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
     const AcceptedLoop& a = run.accepted[i];
     j << (i ? ", " : "") << "{\"query\": " << a.query << ", \"candidate\": " << a.candidate
       << ", \"inliers_3d\": " << a.inliers_3d
-      << ", \"reprojection_inliers\": " << a.reprojection_inliers
-      << ", \"true\": " << (a.correct ? "true" : "false")
+      << ", \"reprojection_inliers\": " << a.reprojection_inliers << ", \"truth\": \""
+      << truthWord(a.truth) << "\""
       << ", \"gt_distance_m\": " << jsonNumber(a.gt_distance_m)
       << ", \"gt_angle_deg\": " << jsonNumber(a.gt_angle_deg)
       << ", \"motion_error_m\": " << jsonNumber(a.motion_error_m)
@@ -481,6 +561,7 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
   }
   j << "]},\n  \"geometry_on_best_candidates\": {\"checked\": " << run.geometry_checked
     << ", \"passed_true\": " << run.geometry_passed_true
+    << ", \"passed_dont_care\": " << run.geometry_passed_dont_care
     << ", \"passed_false\": " << run.geometry_passed_false << "},\n  \"timing_ms\": {"
     << "\"vocabulary_load\": " << jsonNumber(info.vocabulary_load_ms)
     << ", \"add_keyframe_median\": " << jsonNumber(median(info.add_ms, 0.0))
@@ -552,27 +633,31 @@ int run(const Options& o) {
   const TruthTable truth = trueLoops(collector.views(), sequence, config.camera, detector, o.truth);
   const LoopRun run = runQueries(detector, collector.views(), truth,
                                  scaledCamera(config.camera, kDepthFactor), o.truth);
-  std::vector<std::pair<std::string, PrCurve>> curves;
-  for (size_t v = 0; v < kNumVariants; ++v)
-    curves.emplace_back(
-        kVariants[v].name,
-        precisionRecall(decisionsOf(run.rows, v), static_cast<long>(truth.queries.size())));
+  const BothCurves curves = curvesOf(run, truth);
   const std::string title = fs::path(sequence.folder()).filename().string() + "  (" +
                             std::to_string(truth.queries.size()) + " queries with a true loop)";
   writeCurves(o.out, curves, title);
   writeDecisions(o.out, run.rows);
   writeCandidates(o.out, run.candidate_rows);
   writeSummary(o.out, o, info, truth, run, curves, config.loop.min_normalised_score);
-  long correct = 0;
-  for (const AcceptedLoop& a : run.accepted) correct += a.correct;
+  long correct = 0, dont_care = 0;
+  for (const AcceptedLoop& a : run.accepted) {
+    correct += a.truth == LoopTruth::kTrue;
+    dont_care += a.truth == LoopTruth::kDontCare;
+  }
   std::cout << info.frames << " frames, " << info.keyframes << " keyframes, " << truth.pairs.size()
-            << " true loop pairs (" << truth.queries.size() << " queries)\n";
-  for (const auto& [name, curve] : curves)
-    std::cout << "  " << std::left << std::setw(18) << name << " AUC " << std::setprecision(3)
-              << curve.average_precision << ", recall at precision 1 "
-              << curve.recall_at_full_precision << "\n";
-  std::cout << "accepted loops " << run.accepted.size() << " (" << correct << " true); outputs in "
-            << fs::absolute(o.out).string() << "\n";
+            << " true loop pairs (" << truth.queries.size() << " queries), "
+            << truth.dont_care.size() << " pairs counting neither way\n";
+  for (size_t v = 0; v < kNumVariants; ++v) {
+    const PrCurve& strict = curves.by_definition[v].second;
+    const PrCurve& band = curves.with_band[v].second;
+    std::cout << "  " << std::left << std::setw(18) << kVariants[v].name << " AUC "
+              << std::setprecision(3) << strict.average_precision << ", recall at precision 1 "
+              << strict.recall_at_full_precision << "; with the band AUC " << band.average_precision
+              << ", recall at precision 1 " << band.recall_at_full_precision << "\n";
+  }
+  std::cout << "accepted loops " << run.accepted.size() << " (" << correct << " true, " << dont_care
+            << " in the band); outputs in " << fs::absolute(o.out).string() << "\n";
   return 0;
 }
 

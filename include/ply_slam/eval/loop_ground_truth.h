@@ -25,7 +25,17 @@ struct LoopGroundTruthParams {
   int pixel_step = 4;  // of the (already downsampled) depth images
   double depth_tolerance_m = 0.05;
   double depth_tolerance_ratio = 0.05;
+  // A pair is a false loop beyond these (or without overlapping views, or too soon); between
+  // them and max_distance_m / max_angle_deg, with overlapping views, it counts neither way:
+  // there score and distance are uncorrelated (issue #16), views a step apart cannot be told
+  // from one place. The "soft" ground truth of place-recognition benchmarks (NetVLAD's
+  // positives within 10 m, negatives beyond 25 m), at room scale.
+  double false_distance_m = 0.6;
+  double false_angle_deg = 40.0;
 };
+
+// What the ground truth says of a pair of keyframes.
+enum class LoopTruth { kTrue, kDontCare, kFalse };
 
 // A keyframe as the ground truth sees it.
 struct GroundTruthView {
@@ -41,8 +51,10 @@ struct GroundTruthView {
 double viewOverlap(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
                    const LoopGroundTruthParams& params);
 
-// Both poses and times pass, and the larger of the two overlaps reaches min_overlap.
-bool isTrueLoop(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
-                const LoopGroundTruthParams& params);
+// kTrue: time, distance and angle pass, and the larger of the two overlaps reaches
+// min_overlap; kDontCare: the views overlap so, but distance or angle lie between the true and
+// the false bounds; kFalse: everything else.
+LoopTruth loopTruth(const GroundTruthView& a, const GroundTruthView& b, const PinholeCamera& camera,
+                    const LoopGroundTruthParams& params);
 
 }  // namespace ply_slam
