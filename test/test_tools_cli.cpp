@@ -149,15 +149,29 @@ TEST(ToolsCommandLine, LoopsFalseBoundsBelowTheTrueOnesAreRefused) {
   const std::string args = "--sequence " + quoted(test::sharedPath(kSequence)) + " --config " +
                            quoted(std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml") +
                            " --out out";
-  for (const std::string& bad :
-       {"--false-distance-m 0.2", "--false-angle-deg 10", "--false-distance-m nan",
-        "--false-angle-deg x"}) {
+  for (const std::string& bad : {"--false-distance-m 0.2", "--false-angle-deg 10",
+                                 "--false-distance-m nan", "--false-angle-deg x"}) {
     const Result r = run(dir, "ply_slam_loops", args + " " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
     EXPECT_TRUE(contains(r.err, bad.substr(0, bad.find(' '))) && contains(r.err, ">="))
         << bad << ": " << r.err;
   }
   EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
+TEST(ToolsCommandLine, GapsNeedAFrameBeforeAndAfterThem) {
+  TempDir dir;
+  const std::string args = tumArguments(test::sharedPath(kSequence), "out");
+  for (const std::string& bad :
+       {"--kidnap 5", "--kidnap 0:3", "--cover 9:9", "--cover x:4", "--kidnap 2:4 --cover 6:8"}) {
+    const Result r = run(dir, "ply_slam_tum", args + " " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, "--kidnap") || contains(r.err, "--cover")) << bad << ": " << r.err;
+  }
+  // fr1_xyz_37 has 37 frames: a gap up to the last leaves nothing to relocalise in.
+  const Result r = run(dir, "ply_slam_tum", args + " --kidnap 10:37");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "nothing left after it")) << r.err;
 }
 
 // The sequence's images with a ground truth 1000 s later: nothing to pair with.

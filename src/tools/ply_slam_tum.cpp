@@ -30,6 +30,7 @@
 #include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/dense/top_view_renderer.h"
 #include "ply_slam/eval/feature_classification.h"
+#include "ply_slam/eval/gap_evaluation.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/eval/trajectory_plot.h"
 #include "ply_slam/io/atomic_file.h"
@@ -67,6 +68,7 @@ struct Options : RunArguments {
   std::string map;                 // folder of a saved map to localise in; "" = a new map
   bool localisation_only = true;   // with --map: add no keyframes
   bool localisation_only_given = false;
+  std::optional<FrameGap> gap;     // --kidnap / --cover: frames taken out of the run
 };
 
 const char* const kUsage =
@@ -76,7 +78,7 @@ const char* const kUsage =
     " [--save-images N]"
     " [--max-frames N]"
     " [--no-lines] [--no-loop] [--ground-truth-masks DIR] [--save-map DIR]"
-    " [--map DIR [--localisation-only true|false]]\n"
+    " [--map DIR [--localisation-only true|false]] [--kidnap FROM:TO | --cover FROM:TO]\n"
     "  --no-lines: points only, whatever lines.enabled says\n"
     "  --no-loop: no place recognition nor loop closure, whatever loop.enabled says\n"
     "  --dynamic: how dynamic features are rejected (default: the config's dynamic.mode)\n"
@@ -99,6 +101,8 @@ const char* const kUsage =
     "    poses are in its frame, frames before the relocalisation are lost\n"
     "  --localisation-only true|false: with --map, add no keyframes (default true) or extend\n"
     "    the map\n"
+    "  --kidnap FROM:TO: frames FROM..TO-1 (0-based) are skipped: the camera jumps; --cover:\n"
+    "    they are black (rgb and depth). summary.json's gap says how it relocalised\n"
     "Exit codes: 0 ok; 1 a frame or an output could not be read or written (what could be\n"
     "written is); 2 usage error; 3 every output written but the ground truth could not be\n"
     "evaluated (summary.json evaluation_error says why).\n";
@@ -130,6 +134,12 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
       throw UsageError("--localisation-only takes true or false, got '" + value + "'");
     o.localisation_only = value == "true";
     o.localisation_only_given = true;
+  } else if (arg == "--kidnap" || arg == "--cover") {
+    if (o.gap) throw UsageError("--kidnap and --cover: one gap per run");
+    o.gap = parseFrameGap(value, arg == "--cover");
+    if (!o.gap)
+      throw UsageError(arg + " takes FROM:TO, frame numbers with 1 <= FROM < TO, got '" + value +
+                       "'");
   }
 }
 
@@ -167,7 +177,9 @@ Options parse(int argc, char** argv) {
                   "--save-images",
                   "--save-map",
                   "--map",
-                  "--localisation-only"};
+                  "--localisation-only",
+                  "--kidnap",
+                  "--cover"};
   line.on_flag = [&](const std::string& flag) {
     (flag == "--live"       ? o.live
      : flag == "--realtime" ? o.realtime
@@ -597,6 +609,9 @@ class TumRun {
 
  private:
   void trackFrames();
+  // Where the frames around a --kidnap / --cover gap were and how tracking took them.
+  void noteGap(size_t i, double stamp, const FrameResult& r);
+  Json gapJson() const;
   std::vector<Instance> segment(const RgbdImages& images);
   void scoreAgainstGroundTruth(const RgbdImages& images, const std::vector<Instance>& instances,
                                const FrameResult& r);
@@ -637,6 +652,12 @@ class TumRun {
   std::map<long, cv::Mat> keyframe_walkers_;
   Trajectory trajectory_;  // derived from the keyframes' final poses: taken once
   Evaluation evaluation_;
+  struct GapLog {
+    double start_stamp = 0.0, end_stamp = 0.0;  // the last frame before it, the first after
+    long lost_after = 0;                         // frames after it before one was tracked
+    bool tracked_after = false;
+    std::vector<double> relocalised;  // stamps of the frames tracking relocalised in
+  } gap_;
 };
 
 TumRun::TumRun(const Options& options)
@@ -666,6 +687,10 @@ TumRun::TumRun(const Options& options)
   system_ = std::make_unique<System>(
       config_, options.realtime ? MappingMode::kSplitOwnThread : MappingMode::kSplit);
   if (!options.map.empty()) map_json_ = loadSavedMap(*system_, options);
+  if (options.gap && static_cast<size_t>(options.gap->to) >= sequence_.size())
+    throw std::invalid_argument("the gap ends at frame " + std::to_string(options.gap->to) +
+                                " but the sequence has " + std::to_string(sequence_.size()) +
+                                " frames: nothing left after it");
   if (config_.dense.enabled) dense_ = std::make_unique<DenseMappingWorker>(config_.dense);
   timing_ << kTimingHeader;
 }
@@ -676,10 +701,16 @@ void TumRun::trackFrames() {
                        : sequence_.size();
   start_ = std::chrono::steady_clock::now();
   for (size_t i = 0; i < n; ++i) {
+    const bool in_gap = options_.gap && options_.gap->holds(i);
+    if (in_gap && !options_.gap->black) continue;  // kidnapped: the camera is elsewhere
     FrameResult r;
     RgbdImages images;
     try {
       images = sequence_.load(i, config_.camera.depth_factor);
+      if (in_gap) {  // covered: nothing to see
+        images.rgb.setTo(cv::Scalar::all(0));
+        images.depth.setTo(cv::Scalar::all(0));
+      }
       const std::vector<Instance> instances = segment(images);
       r = system_->process(images, instances);
       scoreAgainstGroundTruth(images, instances, r);
@@ -689,9 +720,42 @@ void TumRun::trackFrames() {
       return;
     }
     saveImage(i, images, r);
+    noteGap(i, images.stamp, r);
     counts_.add(r);
     writeTimingRow(timing_, r, *system_);
   }
+}
+
+void TumRun::noteGap(size_t i, double stamp, const FrameResult& r) {
+  if (!options_.gap) return;
+  const bool ok = r.tracking.state == TrackingState::kOk;
+  if (ok && r.tracking.method == "reloc") gap_.relocalised.push_back(stamp);
+  if (static_cast<long>(i) + 1 == options_.gap->from) gap_.start_stamp = stamp;
+  if (static_cast<long>(i) == options_.gap->to) gap_.end_stamp = stamp;
+  if (static_cast<long>(i) < options_.gap->to || gap_.tracked_after) return;
+  gap_.tracked_after = ok;
+  gap_.lost_after += !ok;
+}
+
+Json TumRun::gapJson() const {
+  const FrameGap& gap = *options_.gap;
+  Json json = {{"kind", gap.black ? "cover" : "kidnap"}, {"from", gap.from}, {"to", gap.to}};
+  json["frames_until_tracked"] = gap_.tracked_after ? Json(gap_.lost_after) : Json(nullptr);
+  if (!sequence_.hasGroundTruth()) return json;
+  try {
+    const GapReport g = evaluateGap(sequence_.groundTruth(), trajectory_, gap_.start_stamp,
+                                    gap_.end_stamp, gap_.relocalised);
+    if (g.relocalised) {
+      json["first_error_m"] = rounded(g.first_error_m);
+      json["first_error_deg"] = rounded(g.first_error_deg);
+    }
+    json["ate_after"] = statsJson(g.after);
+    json["relocalisations"] = g.relocalisations;
+    json["wrong_relocalisations"] = g.wrong_relocalisations;
+  } catch (const std::exception& e) {
+    json["error"] = e.what();
+  }
+  return json;
 }
 
 std::vector<Instance> TumRun::segment(const RgbdImages& images) {
@@ -784,6 +848,7 @@ Json TumRun::summarise() {
                      {"keyframes_held_back", counts_.keyframes_held_back}};
   evaluation_ = evaluate(sequence_, trajectory_);
   json.update(evaluation_.fields);
+  if (options_.gap) json["gap"] = gapJson();
   return json;
 }
 
