@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -172,6 +173,45 @@ TEST(ToolsCommandLine, GapsNeedAFrameBeforeAndAfterThem) {
   const Result r = run(dir, "ply_slam_tum", args + " --kidnap 10:37");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_TRUE(contains(r.err, "nothing left after it")) << r.err;
+}
+
+// Two passes of one place, the same stamps, different paths; each run's poses in the map's
+// frame, which is the first pass's ground-truth frame turned by 90 degrees about z and moved
+// (x, y) -> (-y + 1, x). A TUM line per pose: stamp x y z and the identity quaternion.
+std::string passOf(double phase, bool in_map_frame) {
+  std::ostringstream text;
+  for (int k = 0; k < 40; ++k) {
+    const double x = std::cos(0.1 * k + phase), y = std::sin(0.13 * k + 2 * phase), z = 0.02 * k;
+    text << 100 + k * 0.1 << ' ' << (in_map_frame ? -y + 1 : x) << ' ' << (in_map_frame ? x : y)
+         << ' ' << z << " 0 0 " << (in_map_frame ? "0.7071067811865476 0.7071067811865476"
+                                                  : "0 1")
+         << '\n';
+  }
+  return text.str();
+}
+
+// ply_slam_eval ate --align-with: the second pass, localised in the first pass's map, is judged
+// with the map run's alignment; with its own ground truth associated to the map run's poses
+// (the same stamps, other places) that alignment is wrong, with --align-truth it is right.
+TEST(ToolsCommandLine, EvalAlignsAnotherPassWithTheMapRunsOwnGroundTruth) {
+  TempDir dir;
+  writeText(dir.path() / "gt1.txt", passOf(0.0, false));
+  writeText(dir.path() / "map_run.txt", passOf(0.0, true));
+  writeText(dir.path() / "gt2.txt", passOf(0.7, false));
+  writeText(dir.path() / "pass2.txt", passOf(0.7, true));
+  const auto rmse = [](const std::string& json) {
+    return std::stod(json.substr(json.find("\"rmse\": ") + 9));
+  };
+  Result r = run(dir, "ply_slam_eval",
+                 "ate gt2.txt pass2.txt --json --align-with map_run.txt --align-truth gt1.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(rmse(r.out), 1e-4) << r.out;  // the files' 6 digits
+  r = run(dir, "ply_slam_eval", "ate gt2.txt pass2.txt --json --align-with map_run.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(rmse(r.out), 0.1) << r.out;
+  r = run(dir, "ply_slam_eval", "ate gt2.txt pass2.txt --align-truth gt1.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--align-truth needs --align-with")) << r.err;
 }
 
 // The sequence's images with a ground truth 1000 s later: nothing to pair with.

@@ -28,7 +28,8 @@ constexpr int kExitData = 1;
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 const char* const kUsage =
-    "usage: ply_slam_eval ate GT EST [--max-dt S] [--json] [--plot PNG] [--align-with REF]\n"
+    "usage: ply_slam_eval ate GT EST [--max-dt S] [--json] [--plot PNG]\n"
+    "                            [--align-with REF [--align-truth REF_GT]]\n"
     "       ply_slam_eval rpe GT EST [--delta N | --delta-seconds S] [--max-dt S] [--json]\n"
     "\n"
     "GT and EST are TUM trajectory files ('stamp tx ty tz qx qy qz qw' per line).\n"
@@ -40,6 +41,8 @@ const char* const kUsage =
     "  --plot PNG       (ate) also write a top/side view of gt and the aligned estimate\n"
     "  --align-with REF (ate) align EST with the alignment fitted to REF, an estimate in the\n"
     "                   same frame (the run that made a map EST was localised in), not its own\n"
+    "  --align-truth REF_GT  the ground truth REF is aligned to, when REF is another pass of\n"
+    "                   the place than GT (default GT: the same frames)\n"
     "A stamp given twice in a file, a non-finite number or coordinates too large to square\n"
     "are errors naming the file.\n"
     "Exit codes: 0 ok, 1 unreadable/malformed data or too few pairs, 2 usage error.\n";
@@ -52,7 +55,8 @@ struct Options {
   double max_dt = 0.02;
   bool json = false;
   std::string plot_path;
-  std::string align_with;  // ate: the estimate whose fitted alignment EST is judged with
+  std::string align_with;   // ate: the estimate whose fitted alignment EST is judged with
+  std::string align_truth;  // and its ground truth, when not GT
   std::optional<int> delta_frames;
   std::optional<double> delta_seconds;
 };
@@ -78,7 +82,8 @@ Options parseArguments(int argc, char** argv) {
   ply_slam::CommandLine line;
   line.usage_text = kUsage;
   line.flags = {"--json"};
-  line.options = {"--max-dt", "--plot", "--align-with", "--delta", "--delta-seconds"};
+  line.options = {"--max-dt",      "--plot",  "--align-with",
+                  "--align-truth", "--delta", "--delta-seconds"};
   line.unknown_hint = [&]() -> std::string {
     return options.command.empty() ? " (the command, ate or rpe, comes first)"
                                    : " for '" + options.command + "'";
@@ -93,7 +98,7 @@ Options parseArguments(int argc, char** argv) {
     options.command = arg;
   };
   // The options of the other command, and any before the command, are unknown here.
-  const std::set<std::string> ate_only = {"--plot", "--align-with"},
+  const std::set<std::string> ate_only = {"--plot", "--align-with", "--align-truth"},
                               rpe_only = {"--delta", "--delta-seconds"};
   auto check = [&](const std::string& arg) {
     const std::set<std::string>& other = options.command == "ate" ? rpe_only : ate_only;
@@ -112,6 +117,8 @@ Options parseArguments(int argc, char** argv) {
       options.plot_path = value;
     else if (arg == "--align-with")
       options.align_with = value;
+    else if (arg == "--align-truth")
+      options.align_truth = value;
     else if (arg == "--delta")
       options.delta_frames = parseFrameCount(arg, value);
     else
@@ -119,6 +126,8 @@ Options parseArguments(int argc, char** argv) {
   };
   line.parse(argc, argv);
   if (options.command.empty()) throw UsageError("missing command 'ate' or 'rpe'");
+  if (!options.align_truth.empty() && options.align_with.empty())
+    throw UsageError("--align-truth needs --align-with");
   if (positional.size() != 2) {
     throw UsageError("'" + options.command + "' needs exactly two files, GT and EST, got " +
                      std::to_string(positional.size()));
@@ -171,15 +180,19 @@ void requireFinite(const ply_slam::ErrorStats& s, const char* what) {
 int runAte(const Options& options, const ply_slam::Trajectory& gt,
            const ply_slam::Trajectory& est) {
   // A run in a loaded map is judged in that map's frame: aligned as the run that made it.
+  // The reference may be another pass of the place, with a ground truth of its own.
+  const auto referenceAlignment = [&] {
+    const ply_slam::Trajectory reference_gt =
+        options.align_truth.empty() ? gt
+                                    : readNonEmpty(options.align_truth, "reference ground truth");
+    return ply_slam::computeAte(reference_gt, readNonEmpty(options.align_with, "reference"),
+                                options.max_dt)
+        .T_gt_est;
+  };
   const ply_slam::AteResult ate =
       options.align_with.empty()
           ? ply_slam::computeAte(gt, est, options.max_dt)
-          : ply_slam::computeAteInFrame(
-                gt, est,
-                ply_slam::computeAte(gt, readNonEmpty(options.align_with, "reference"),
-                                     options.max_dt)
-                    .T_gt_est,
-                options.max_dt);
+          : ply_slam::computeAteInFrame(gt, est, referenceAlignment(), options.max_dt);
   const ply_slam::ErrorStats& s = ate.translation;
   requireFinite(s, "the ATE");
   // Beside it the estimate's scale against the truth (a fitted map frame has none of its own).
