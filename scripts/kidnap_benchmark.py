@@ -74,12 +74,12 @@ def main():
         "frames 20 + k (N − 80) / 9, k = 0..9, %d frames skipped; covers at every other of those, "
         "%d frames black). *Tracked again*: runs with a pose after the gap; *frames until*: median / max of "
         "the frames after the gap before the first pose. *First pose*: its motion from the last "
-        "pose before the gap against the truth's (median cm / median ° / max °). *ATE after*: the "
+        "pose before the gap against the truth's (median cm; median / max °). *ATE after*: the "
         "poses after the gap aligned as those before it, median over the runs. *Wrong*: "
         "relocalisations more than 0.1 m or 5° off (motion from the last tracked pose)."
         % (command, KIDNAP_FRAMES, COVER_FRAMES),
         "",
-        "| sequence | gap | tracked again | frames until | first pose cm / ° | max ° | ATE after (mm) | wrong relocalisations |",
+        "| sequence | gap | tracked again | frames until | first pose cm | first pose ° | ATE after (mm) | wrong relocalisations |",
         "|---|---|---|---|---|---|---|---|",
     ] + rows + ["<!-- kidnap:end -->"]
     section_path = os.path.join(out_root, "section.md")
