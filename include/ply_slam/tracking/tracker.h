@@ -105,6 +105,7 @@ class Tracker {
   std::unique_ptr<Frame> last_frame_;
   CameraVelocity velocity_;  // between the last two tracked frames
   bool has_velocity_ = false;
+  bool velocity_at_loss_ = false;  // velocity_ was valid when tracking was lost
   std::shared_ptr<KeyFrame> last_keyframe_;
   std::vector<std::shared_ptr<MapPoint>> local_points_;
   std::vector<std::shared_ptr<MapLine>> local_lines_;  // of the local keyframes
