@@ -6,10 +6,11 @@
 #
 # Targets: the fuzz/fuzz_*.cpp harnesses (default: all), built into build/fuzz with clang.
 # Seeds: the repo's configs and, from $PLY_SLAM_SHARED/data, list heads and thumbnails made into
-# ROS messages (build/fuzz/seeds, never committed), plus test/fuzz_regressions/<target>. The
-# corpus grows across runs in build/fuzz/corpus/<target>. A finding (crash, UB, leak, timeout,
-# out-of-memory) is written to build/fuzz/findings/<target>/ and the target restarted until its
-# time is up. Exit code 1 when anything was found.
+# ROS messages (build/fuzz/seeds, never committed), plus test/fuzz_regressions/<target> and the
+# committed corpus fuzz/corpus/<target> (fuzz_config's: our own inputs only, minimised with
+# -merge=1). The corpus grows across runs in build/fuzz/corpus/<target>. A finding (crash, UB,
+# leak, timeout, out-of-memory) is written to build/fuzz/findings/<target>/ and the target
+# restarted until its time is up. Exit code 1 when anything was found.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
@@ -75,6 +76,7 @@ for target in "${TARGETS[@]}"; do
   mkdir -p "$corpus" "$findings" "${FUZZ}/seeds/${target}"
   inputs=("$corpus" "${FUZZ}/seeds/${target}")
   [ -d "$regressions" ] && inputs+=("$regressions")
+  [ -d "${PLY_SLAM_ROOT}/fuzz/corpus/${target}" ] && inputs+=("${PLY_SLAM_ROOT}/fuzz/corpus/${target}")
   before=$(ls "$findings" | wc -l)
   executions=0 cov=0 left=$SECONDS_PER_TARGET restarts=0
   echo "[fuzz] ${target}: ${SECONDS_PER_TARGET} s"
