@@ -111,14 +111,21 @@ AssociatedPositions associatedPositions(const Trajectory& gt, const Trajectory& 
   return positions;
 }
 
-AteResult ateWith(const AssociatedPositions& positions, const Eigen::Isometry3d& T_gt_est) {
-  AteResult result;
-  result.T_gt_est = T_gt_est;
+// The distances between the ground truth and the estimate mapped into its frame by `align`.
+template <typename Align>
+ErrorStats errorsAfter(const AssociatedPositions& positions, const Align& align) {
   std::vector<double> errors;
   errors.reserve(positions.gt.size());
   for (size_t k = 0; k < positions.gt.size(); ++k)
-    errors.push_back((positions.gt[k] - T_gt_est * positions.est[k]).norm());
-  result.translation = summarize(std::move(errors));
+    errors.push_back((positions.gt[k] - align(positions.est[k])).norm());
+  return summarize(std::move(errors));
+}
+
+AteResult ateWith(const AssociatedPositions& positions, const Eigen::Isometry3d& T_gt_est) {
+  AteResult result;
+  result.T_gt_est = T_gt_est;
+  result.translation = errorsAfter(
+      positions, [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return T_gt_est * p; });
   return result;
 }
 
@@ -133,11 +140,7 @@ SimilarityAteResult computeAteSimilarity(const Trajectory& gt, const Trajectory&
                                          double max_dt) {
   const AssociatedPositions positions = associatedPositions(gt, est, max_dt);
   const SimilarityAlignment align = alignSimilarity(positions.est, positions.gt);
-  std::vector<double> errors;
-  errors.reserve(positions.gt.size());
-  for (size_t k = 0; k < positions.gt.size(); ++k)
-    errors.push_back((positions.gt[k] - align(positions.est[k])).norm());
-  return {summarize(std::move(errors)), align.scale};
+  return {errorsAfter(positions, align), align.scale};
 }
 
 AteResult computeAteInFrame(const Trajectory& gt, const Trajectory& est,

@@ -150,8 +150,11 @@ void Tracker::applyCorrection(const Eigen::Isometry3d& world_correction) {
 }
 
 Eigen::Isometry3d Tracker::predictedPose(double stamp) const {
-  return has_velocity_ ? velocity_.over(stamp - last_frame_->stamp) * last_frame_->T_cw
-                       : last_frame_->T_cw;
+  return has_velocity_ ? movedOn(stamp) : last_frame_->T_cw;
+}
+
+Eigen::Isometry3d Tracker::movedOn(double stamp) const {
+  return velocity_.over(stamp - last_frame_->stamp) * last_frame_->T_cw;
 }
 
 bool Tracker::farFromPrediction(const Frame& frame) const {
@@ -161,11 +164,9 @@ bool Tracker::farFromPrediction(const Frame& frame) const {
   const bool soon_after_loss = state_ == TrackingState::kLost && velocity_at_loss_ &&
                                frame.stamp - last_frame_->stamp <= options_.max_velocity_gap_s;
   if (!(state_ == TrackingState::kOk && has_velocity_) && !soon_after_loss) return false;
-  const Eigen::Isometry3d predicted =
-      velocity_.over(frame.stamp - last_frame_->stamp) * last_frame_->T_cw;
   // Camera centres: where the prediction and the solve put the camera.
   const Eigen::Vector3d gap =
-      frame.T_cw.inverse().translation() - predicted.inverse().translation();
+      frame.T_cw.inverse().translation() - movedOn(frame.stamp).inverse().translation();
   return gap.norm() > options_.max_prediction_error;
 }
 

@@ -76,6 +76,8 @@ class Tracker {
   bool initialise(Frame& frame);
   // The constant-velocity prediction of the pose at `stamp` (the last pose without a velocity).
   Eigen::Isometry3d predictedPose(double stamp) const;
+  // The last tracked frame's pose moved on by velocity_ to `stamp`.
+  Eigen::Isometry3d movedOn(double stamp) const;
   // The solved pose lies further from the constant-velocity prediction than a camera moves.
   bool farFromPrediction(const Frame& frame) const;
   bool trackWithMotionModel(Frame& frame);
