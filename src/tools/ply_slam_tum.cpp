@@ -114,7 +114,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (arg == "--ground-truth-masks") {
     o.ground_truth_masks = value;
   } else if (arg == "--max-frames") {
-    o.max_frames = parseCount(arg, value);
+    o.max_frames = wholeNumberArgument(arg, value, 1, 1000000000L, "a whole number >= 1");
   } else if (arg == "--dynamic") {
     o.dynamic = value;
   } else if (arg == "--segment-lag") {
@@ -154,20 +154,13 @@ Options parse(int argc, char** argv) {
   CommandLine line;
   line.usage_text = kUsage;
   line.flags = {"--no-lines", "--live", "--realtime", "--no-loop"};
-  line.options = {"--sequence",
-                  "--config",
-                  "--out",
-                  "--segmenter",
-                  "--model",
-                  "--input",
-                  "--dynamic",
-                  "--ground-truth-masks",
-                  "--segment-lag",
-                  "--max-frames",
-                  "--save-images",
-                  "--save-map",
-                  "--map",
-                  "--localisation-only"};
+  line.options = {"--sequence",    "--config",
+                  "--out",         "--segmenter",
+                  "--model",       "--input",
+                  "--dynamic",     "--ground-truth-masks",
+                  "--segment-lag", "--max-frames",
+                  "--save-images", "--save-map",
+                  "--map",         "--localisation-only"};
   line.on_flag = [&](const std::string& flag) {
     (flag == "--live"       ? o.live
      : flag == "--realtime" ? o.realtime
