@@ -700,6 +700,41 @@ TEST(ConfigText, AKeyThatIsNotANameIsAConfigError) {
   EXPECT_THROW(loadConfigFromString(base + "? [a, b]\n: 1\n", "test"), ConfigError);
 }
 
+// Issue #53: yaml-cpp's Load reads the first document and drops the rest without a word, so a
+// camera given after "---" was ignored.
+TEST_F(ConfigFileTest, ASecondYamlDocumentIsRefused) {
+  const std::string path = write("two.yaml", std::string(kValidYaml) + "---\ncamera: {fx: 1}\n");
+  expectConfigError(path, {"2 YAML documents"});
+  try {
+    loadConfig(path);
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).find("cannot read"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(loadConfigFromString(std::string(kValidYaml) + "---\n---\n", "text"), ConfigError);
+  EXPECT_NO_THROW(loadConfigFromString(std::string("---\n") + kValidYaml, "text"));
+}
+
+// Issue #53: a valid-looking 4-coefficient list with p2 = 1.16 (fr1's k2 left out) cannot be
+// undistorted at the border: dense points went kilometres out and the run took minutes.
+TEST_F(ConfigFileTest, ADistortionThatCannotBeUndistortedIsRefused) {
+  const std::string fr1 = "distortion: [0.2624, -0.9531, -0.0054, 0.0026, 1.1633]";
+  expectConfigError(writeEdited("p2.yaml", fr1, "distortion: [0.2624, -0.0054, 0.0026, 1.1633]"),
+                    {"camera.distortion", "cannot be undistorted at the image border"});
+  expectConfigError(writeEdited("k1.yaml", fr1, "distortion: [-1.0, 0, 0, 0]"),
+                    {"camera.distortion", "cannot be undistorted"});
+  EXPECT_NO_THROW(loadConfig(writeEdited("k1_small.yaml", fr1, "distortion: [-0.1, 0, 0, 0]")));
+}
+
+// Issue #53: orb.edge_threshold 100000 left no pixel to extract from and tracked nothing.
+TEST_F(ConfigFileTest, AnOrbBorderWiderThanAnImageIsRefused) {
+  expectConfigError(writeEdited("edge.yaml", "  scale_factor: 1.2\n",
+                                "  scale_factor: 1.2\n  edge_threshold: 100000\n"),
+                    {"orb.edge_threshold", "must lie in [1, 100]"});
+  const std::string fine = writeEdited("edge31.yaml", "  scale_factor: 1.2\n",
+                                       "  scale_factor: 1.2\n  edge_threshold: 31\n");
+  EXPECT_EQ(loadConfig(fine).orb.edge_threshold, 31);
+}
+
 // What a tracker apart and its mapping_node must agree on (ApartMappingSide refuses the rest).
 TEST(MappingSettings, OnlyTheKeysTheMappingSideReadsCount) {
   const std::string base =

@@ -95,13 +95,26 @@ TEST(ToolsCommandLine, EveryToolExitsTwoWithItsUsageOnAUsageError) {
 TEST(ToolsCommandLine, SegmentLagWithoutASegmenterOrWithLiveIsAUsageError) {
   TempDir dir;
   const std::string base = "--sequence s --config c --out o ";
-  for (const std::string& extra : {std::string("--segment-lag 4"),
-                                   std::string("--segmenter masks --live --segment-lag 4"),
-                                   std::string("--segmenter masks --segment-lag 0")}) {
+  for (const std::string& extra :
+       {std::string("--segment-lag 4"), std::string("--segmenter masks --live --segment-lag 4"),
+        std::string("--segmenter masks --segment-lag 0")}) {
     const Result r = run(dir, "ply_slam_tum", base + extra);
     EXPECT_EQ(r.exit_code, 2) << extra << " said: " << r.err;
     EXPECT_TRUE(contains(r.err, "--segment-lag")) << extra << " said: " << r.err;
   }
+}
+
+// Issue #53: --max-frames 0 ran no frame and --sequence given twice took the last silently.
+TEST(ToolsCommandLine, NoFramesAndAnOptionGivenTwiceAreUsageErrors) {
+  TempDir dir;
+  const std::string base = "--sequence s --config c --out o ";
+  for (const std::string& extra : {std::string("--max-frames 0"), std::string("--sequence t")}) {
+    const Result r = run(dir, "ply_slam_tum", base + extra);
+    EXPECT_EQ(r.exit_code, 2) << extra << " said: " << r.err;
+    EXPECT_TRUE(contains(r.err, extra.substr(0, extra.find(' ')))) << extra << " said: " << r.err;
+  }
+  EXPECT_TRUE(
+      contains(run(dir, "ply_slam_tum", base + "--sequence t").err, "--sequence is given twice"));
 }
 
 // Each tool's main goes through CommandLine and runTool (one behaviour for --help, unknown

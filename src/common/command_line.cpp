@@ -10,12 +10,15 @@
 namespace ply_slam {
 
 void CommandLine::parse(int argc, char** argv) const {
+  std::set<std::string> given;  // a second value would silently replace the first
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "-h" || arg == "--help") {
       std::cout << usage_text;
       std::exit(0);
     }
+    if ((flags.count(arg) || options.count(arg)) && !given.insert(arg).second)
+      throw UsageError(arg + " is given twice");
     if (flags.count(arg)) {
       on_flag(arg);
     } else if (options.count(arg)) {

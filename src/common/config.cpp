@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "ply_slam/common/camera_check.h"
 #include "ply_slam/common/config_section.h"
@@ -140,6 +141,15 @@ SystemConfig parseConfig(const YAML::Node& root, const std::string& path) {
   return config;
 }
 
+// The one document of a config: yaml-cpp's Load reads the first and drops the rest without a
+// word, so a second document (after "---") would be ignored.
+YAML::Node onlyDocument(const std::vector<YAML::Node>& documents, const std::string& name) {
+  if (documents.size() > 1)
+    throw ConfigError("config " + name + ": holds " + std::to_string(documents.size()) +
+                      " YAML documents (separated by ---); a config is one");
+  return documents.empty() ? YAML::Node() : documents.front();
+}
+
 }  // namespace
 
 SystemConfig loadConfig(const std::string& path) {
@@ -148,7 +158,9 @@ SystemConfig loadConfig(const std::string& path) {
     throw ConfigError("config " + path + ": " + *problem);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = onlyDocument(YAML::LoadAllFromFile(path), path);
+  } catch (const ConfigError&) {
+    throw;
   } catch (const YAML::BadFile&) {
     throw ConfigError("config " + path + ": cannot open the file");
   } catch (const YAML::Exception& e) {
@@ -162,7 +174,7 @@ SystemConfig loadConfig(const std::string& path) {
 SystemConfig loadConfigFromString(const std::string& yaml_text, const std::string& source_name) {
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
+    root = onlyDocument(YAML::LoadAll(yaml_text), source_name);
   } catch (const YAML::Exception& e) {
     throw ConfigError("config " + source_name + ": not valid YAML: " + e.what());
   }

@@ -1,6 +1,13 @@
 #include "ply_slam/features/orb_options_yaml.h"
 
 namespace ply_slam {
+namespace {
+
+// px. OpenCV's default is 31; a border of thousands left no pixel to extract from and tracked
+// nothing without a word (issue #53).
+constexpr int kMaxOrbEdgeThreshold = 100;
+
+}  // namespace
 
 OrbOptions readOrbOptions(ConfigSection s) {
   OrbOptions o;
@@ -12,7 +19,7 @@ OrbOptions readOrbOptions(ConfigSection s) {
   s.readPositive("fast_threshold", o.fast_threshold);
   s.readPositive("min_fast_threshold", o.min_fast_threshold);
   s.readPositive("grid_cell_size", o.grid_cell_size);
-  s.readPositive("edge_threshold", o.edge_threshold);
+  s.readInRange("edge_threshold", o.edge_threshold, 1, kMaxOrbEdgeThreshold);
   s.rejectUnknownKeys();
   return o;
 }

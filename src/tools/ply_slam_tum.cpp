@@ -118,7 +118,7 @@ void setOption(Options& o, const std::string& arg, const std::string& value) {
   if (arg == "--ground-truth-masks") {
     o.ground_truth_masks = value;
   } else if (arg == "--max-frames") {
-    o.max_frames = parseCount(arg, value);
+    o.max_frames = wholeNumberArgument(arg, value, 1, 1000000000L, "a whole number >= 1");
   } else if (arg == "--dynamic") {
     o.dynamic = value;
   } else if (arg == "--segment-lag") {

@@ -17,7 +17,8 @@ struct UsageError : std::invalid_argument {
 // Each flag goes to on_flag(flag), each pair to on_option(option, value), each argument not
 // starting with '-' to on_positional(arg) when set. Anything else throws UsageError
 // "unknown option ARG" (followed by unknown_hint() when set), an option without its value
-// "missing value after OPTION"; the handlers throw UsageError for a value they refuse.
+// "missing value after OPTION", a flag or option given twice "OPTION is given twice"; the
+// handlers throw UsageError for a value they refuse.
 struct CommandLine {
   std::string usage_text;
   std::set<std::string> flags;    // take no value
