@@ -170,5 +170,38 @@ TEST(Relocalisation, PnpAgainstTheLocalMapCatchesWhatTheMotionModelMisses) {
   EXPECT_LT(computeAte(sequence.groundTruth(), system.cameraTrajectory()).translation.rmse, 0.01);
 }
 
+// Relocalising soon after the loss, the camera cannot be far from where its velocity took it:
+// frame 5's view, shown 33 ms after frame 29 was tracked (0.28 m further on), is refused; the
+// same images half a second later (beyond max_velocity_gap_s) are placed where frame 5 was.
+TEST(Relocalisation, SoonAfterALossOnlyNearTheConstantVelocityPrediction) {
+  const std::string folder = test::sharedPath("data/tum/rgbd_dataset_freiburg1_xyz_37");
+  PLY_SLAM_REQUIRE_SHARED(folder);
+  const SystemConfig config = fr1Config();
+  const TumSequence sequence(folder);
+  System system(config);
+  for (size_t i = 0; i < 30; ++i)
+    ASSERT_EQ(system.process(sequence.load(i, config.camera.depth_factor)).tracking.state,
+              TrackingState::kOk)
+        << "frame " << i;
+  RgbdImages blank = sequence.load(30, config.camera.depth_factor);
+  blank.rgb.setTo(cv::Scalar(0, 0, 0));
+  ASSERT_EQ(system.process(blank).tracking.state, TrackingState::kLost);
+  const Eigen::Isometry3d frame5 = system.cameraTrajectory()[5].T_wc;
+
+  const auto frame5At = [&](double stamp) {
+    RgbdImages images = sequence.load(5, config.camera.depth_factor);
+    images.depth_stamp = images.depth_stamp > 0 ? images.depth_stamp - images.stamp + stamp : 0;
+    images.stamp = stamp;
+    return system.process(images).tracking;
+  };
+  ASSERT_LT(0.033, config.tracking.max_velocity_gap_s);
+  EXPECT_EQ(frame5At(blank.stamp + 0.033).state, TrackingState::kLost);
+  ASSERT_GT(0.5, config.tracking.max_velocity_gap_s);
+  const TrackingResult later = frame5At(blank.stamp + 0.5);
+  ASSERT_EQ(later.state, TrackingState::kOk);
+  EXPECT_EQ(later.method, "reloc");
+  EXPECT_LT((later.T_cw.inverse().translation() - frame5.translation()).norm(), 0.02);
+}
+
 }  // namespace
 }  // namespace ply_slam
