@@ -395,6 +395,7 @@ void TrackingNode::track(const Image& rgb, const Image& depth, ros::WallTime arr
   if (total_ms_.size() >= 2000)  // the median is over recent frames; a live run has no end
     total_ms_.erase(total_ms_.begin(), total_ms_.begin() + 1000);
   total_ms_.push_back(result.timing.total_ms);
+  reportTrackingChange(images.stamp, result.tracking.state == TrackingState::kOk);
   if (result.tracking.state == TrackingState::kOk)
     ++tracked_;
   else
@@ -419,6 +420,28 @@ void TrackingNode::warnWhileHeldBack(double stamp, bool held_back) {
                                      << " s: " << system_->mappingBacklog()
                                      << " keyframes wait for mapping_node's answer (is it far "
                                         "behind, or refusing the jobs? see its log)");
+}
+
+void TrackingNode::reportTrackingChange(double stamp, bool tracked) {
+  if (!tracked) {
+    if (!lost_since_ && tracked_ > 0) {
+      ROS_WARN_STREAM("tracking_node: lost at stamp "
+                      << std::fixed << std::setprecision(3) << stamp
+                      << "; relocalising against the map's keyframes"
+                      << (options_.localisation_only && !options_.map.empty()
+                              ? " (localisation only: a view the map does not hold stays lost)"
+                              : ""));
+    }
+    if (!lost_since_) lost_since_ = stamp;
+    ++lost_in_a_row_;
+    return;
+  }
+  if (lost_since_ && tracked_ > 0)
+    ROS_INFO_STREAM("tracking_node: tracking again after " << lost_in_a_row_ << " frame(s), "
+                                                           << std::fixed << std::setprecision(2)
+                                                           << stamp - *lost_since_ << " s lost");
+  lost_since_.reset();
+  lost_in_a_row_ = 0;
 }
 
 // Updates wait for the System (made at the first frame, in the map they build on).

@@ -158,16 +158,20 @@ Eigen::Isometry3d Tracker::movedOn(double stamp) const {
 }
 
 bool Tracker::farFromPrediction(const Frame& frame) const {
+  if (!last_frame_ || (state_ == TrackingState::kOk && !has_velocity_)) return false;
+  // Where the solve and the last tracked frame put the camera centre.
+  const Eigen::Vector3d centre = frame.T_cw.inverse().translation();
+  const double dt = frame.stamp - last_frame_->stamp;
   // Tracking: the constant-velocity prediction. Relocalising within max_velocity_gap_s of the
   // last tracked frame: the prediction from the velocity it had (in 70 ms among people a
   // relocalisation put the camera 0.4-0.6 m off, where it cannot have gone).
-  const bool soon_after_loss = state_ == TrackingState::kLost && velocity_at_loss_ &&
-                               frame.stamp - last_frame_->stamp <= options_.max_velocity_gap_s;
-  if (!(state_ == TrackingState::kOk && has_velocity_) && !soon_after_loss) return false;
-  // Camera centres: where the prediction and the solve put the camera.
-  const Eigen::Vector3d gap =
-      frame.T_cw.inverse().translation() - movedOn(frame.stamp).inverse().translation();
-  return gap.norm() > options_.max_prediction_error;
+  if (state_ == TrackingState::kOk || (velocity_at_loss_ && dt <= options_.max_velocity_gap_s))
+    return (centre - movedOn(frame.stamp).inverse().translation()).norm() >
+           options_.max_prediction_error;
+  // Later: no further than a carried camera moves in the time (in an unmapped stretch of a
+  // corridor a relocalisation put the camera 3 m back after 0.2 s).
+  const double reach = options_.max_prediction_error + options_.max_camera_speed * dt;
+  return (centre - last_frame_->T_cw.inverse().translation()).norm() > reach;
 }
 
 bool Tracker::initialise(Frame& frame) {

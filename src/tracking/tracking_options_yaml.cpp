@@ -25,6 +25,7 @@ TrackingOptions readTrackingOptions(ConfigSection s) {
   s.readPositive("pnp_min_matches", t.pnp_min_matches);
   if (t.pnp_min_matches < 4) s.fail("pnp_min_matches", "must be >= 4 (EPnP)");
   s.readPositive("max_velocity_gap_s", t.max_velocity_gap_s);
+  s.readPositive("max_camera_speed", t.max_camera_speed);
   s.readPositive("max_point_depth", t.max_point_depth);
   t.pose_solver = readSolverOptions(s.child("pose_solver"), t.pose_solver);
   s.rejectUnknownKeys();

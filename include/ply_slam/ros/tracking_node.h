@@ -104,6 +104,8 @@ class TrackingNode {
   void publishJobs(const ros::Time& stamp);
   // A warning (throttled) when keyframes have been held back for kHeldBackWarning_s.
   void warnWhileHeldBack(double stamp, bool held_back);
+  // A warning when tracking is lost, a line when it is found again: never a silent gap.
+  void reportTrackingChange(double stamp, bool tracked);
   void addToPath(const geometry_msgs::PoseStamped& pose, const Eigen::Isometry3d& T_wc);
   void sendPath();
 
@@ -175,6 +177,8 @@ class TrackingNode {
   // ~pose (ROS clock: a live camera's, or a bag's with use_sim_time).
   LatencyWindow lag_from_arrival_, lag_from_stamp_;
   std::optional<double> held_back_since_;  // worker thread only: frame stamp (s)
+  std::optional<double> lost_since_;       // worker thread only: stamp of the first lost frame
+  long lost_in_a_row_ = 0;                 // worker thread only
   static constexpr double kHeldBackWarning_s = 3.0;
 };
 

@@ -78,7 +78,8 @@ class Tracker {
   Eigen::Isometry3d predictedPose(double stamp) const;
   // The last tracked frame's pose moved on by velocity_ to `stamp`.
   Eigen::Isometry3d movedOn(double stamp) const;
-  // The solved pose lies further from the constant-velocity prediction than a camera moves.
+  // The solved pose lies further from the constant-velocity prediction, or after a loss from
+  // the last tracked pose, than a camera moves.
   bool farFromPrediction(const Frame& frame) const;
   bool trackWithMotionModel(Frame& frame);
   bool trackWithPnp(Frame& frame, const std::vector<std::shared_ptr<MapPoint>>& candidates);

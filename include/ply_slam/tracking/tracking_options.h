@@ -33,6 +33,11 @@ struct TrackingOptions {
   // s; a frame further than this from the last tracked one predicts no motion: beyond, the
   // last motion says little.
   double max_velocity_gap_s = 0.2;
+  // m/s; relocalised later than that, the camera lies within max_prediction_error plus this
+  // speed times the time since the last tracked frame. A person walking fast with the camera
+  // (1.4 m/s is a usual walking pace); the TUM fr1 sequences average 0.06-0.41 m/s, a
+  // TurtleBot3 drives at most 0.26 m/s. A robot picked up is carried at a walk too.
+  double max_camera_speed = 2.0;
   double max_point_depth = 6.0;  // m; points beyond are not mapped (depth noise grows as Z^2)
   SolverOptions pose_solver = poseSolverDefaults();  // each round of pose optimisation
 };
