@@ -8,6 +8,9 @@ with ply_slam_eval. Prints one JSON object; the logs stay in OUT.
 
 usage: live_run.py --bag B --config C --frames N --groundtruth GT --eval BIN --out OUT
                    [--model ONNX] [--rate R] [--robot]
+                   [--map DIR --align-with REF --align-truth REF_GT]
+--map: tracking_node localises in DIR/map.plymap (localisation only); the ATE is then taken in
+the map's frame: aligned as REF (the trajectory of the run that made the map) is to REF_GT.
 """
 import argparse
 import json
@@ -132,10 +135,17 @@ def main():
     p.add_argument("--robot", action="store_true",
                    help="turtlebot3_d435i.launch (camera:=false) with its defaults, the bag (D435i "
                         "topics) played beside it")
+    p.add_argument("--map", default="", help="a saved map's folder to localise in")
+    p.add_argument("--align-with", default="", help="with --map: the mapping run's trajectory")
+    p.add_argument("--align-truth", default="", help="with --map: its ground truth")
     a = p.parse_args()
+    if bool(a.map) != bool(a.align_with) or bool(a.align_with) != bool(a.align_truth):
+        p.error("--map, --align-with and --align-truth go together")
     # roslaunch runs the nodes in ROS_HOME: every path absolute.
     a.bag, a.config, a.out = (os.path.abspath(x) for x in (a.bag, a.config, a.out))
     a.model = os.path.abspath(a.model) if a.model else ""
+    a.map, a.align_with, a.align_truth = (os.path.abspath(x) if x else ""
+                                          for x in (a.map, a.align_with, a.align_truth))
     os.makedirs(a.out, exist_ok=True)
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port,
@@ -167,6 +177,8 @@ def main():
         stats = Stats(rospy, String)
         log = open(os.path.join(a.out, "roslaunch.log"), "w")
         common = ["config:=" + a.config, "rviz:=false", "output:=log", "model:=" + a.model]
+        if a.map:
+            common += ["map:=" + a.map, "localisation_only:=true"]
         if a.robot:
             subprocess.run(["rosparam", "set", "/use_sim_time", "true"], env=env, check=True)
             args = ["roslaunch", "ply_slam", "turtlebot3_d435i.launch", "camera:=false",
@@ -205,7 +217,8 @@ def main():
         subprocess.run(["rosservice", "call", NS + "mapping_node/save_trajectory",
                         "path: '%s'" % trajectory], env=env, check=True, capture_output=True,
                        timeout=60)
-        ate = subprocess.run([a.eval, "ate", a.groundtruth, trajectory, "--json"],
+        in_map = ["--align-with", a.align_with, "--align-truth", a.align_truth] if a.map else []
+        ate = subprocess.run([a.eval, "ate", a.groundtruth, trajectory, "--json"] + in_map,
                              capture_output=True, text=True, timeout=60)
         result["ate"] = json.loads(ate.stdout) if ate.returncode == 0 else None
         print(json.dumps(result))

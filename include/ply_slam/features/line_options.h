@@ -14,7 +14,7 @@ inline constexpr EnumWord<LineBalance> kLineBalanceWords[] = {{LineBalance::kPap
 inline const char* toString(LineBalance balance) { return wordOf(kLineBalanceWords, balance); }
 
 // Which 2D line detector finds the segments. kAuto: LSD where OpenCV has it, else EDLines
-// (README, "Line segment detection across OpenCV versions"). Config words: "auto", "lsd",
+// (docs/METHOD.md, "Line segment detection across OpenCV versions"). Config words: "auto", "lsd",
 // "edlines".
 enum class LineDetectorChoice { kAuto, kLsd, kEdlines };
 inline constexpr EnumWord<LineDetectorChoice> kLineDetectorWords[] = {

@@ -16,7 +16,7 @@ namespace ply_slam {
 // The sparse map: keyframes, point and line landmarks. The containers are guarded by their own
 // mutex. The keyframes and landmarks in them are guarded by updateMutex(): whoever reads or
 // changes them while another thread may hold it (the tracker for one frame, the mapping side
-// for each of its steps; see README's "Threads and locks"). Ceres solves on copies without it.
+// for each of its steps; see docs/ARCHITECTURE.md, "Threads and locks"). Ceres solves on copies without it.
 class Map {
  public:
   // The one lock over keyframes' and landmarks' contents (poses, positions, links). Never taken

@@ -36,7 +36,7 @@ namespace ply_slam {
 // trajectory and maps on request. With ~map_keyframes it maps the jobs of a tracker with
 // ~mapping_apart (ApartMappingSide: local BA, culling, loop closure) and its copy is what the
 // mapping side made; without, local BA, culling and loop closure run in the tracking process
-// (System) and the copy follows the tracker's keyframes and map updates (README, "Layout"). Its
+// (System) and the copy follows the tracker's keyframes and map updates (docs/ARCHITECTURE.md, "Layout"). Its
 // main reads the options and builds the back-end (dense maps, grid, the mapping side).
 //
 // Threads: every subscriber, timer and service runs on ros::spin's one thread; the dense maps

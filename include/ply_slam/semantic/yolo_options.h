@@ -11,7 +11,7 @@ enum class DnnTarget { kCpu, kOpenCl, kOpenClFp16, kCuda, kCudaFp16 };
 
 // YOLOv8-seg instance segmentation (the config's `segmentation:` section).
 struct YoloOptions {
-  std::string model_path;        // ONNX export with a fixed input size (README); "" = none
+  std::string model_path;        // ONNX export with a fixed input size (docs/TOOLS.md); "" = none
   std::string class_names_path;  // one class name per line, in the model's order
   // The export's input size; 0 = read from the model (a fixed-size export says its own).
   int input_width = 0;
