@@ -143,9 +143,8 @@ def main():
         p.error("--map, --align-with and --align-truth go together")
     # roslaunch runs the nodes in ROS_HOME: every path absolute.
     a.bag, a.config, a.out = (os.path.abspath(x) for x in (a.bag, a.config, a.out))
-    a.model = os.path.abspath(a.model) if a.model else ""
-    a.map, a.align_with, a.align_truth = (os.path.abspath(x) if x else ""
-                                          for x in (a.map, a.align_with, a.align_truth))
+    a.model, a.map, a.align_with, a.align_truth = (
+        os.path.abspath(x) if x else "" for x in (a.model, a.map, a.align_with, a.align_truth))
     os.makedirs(a.out, exist_ok=True)
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port,

@@ -28,6 +28,11 @@ namespace {
 // intrinsics are used.
 bool calibrated(const sensor_msgs::CameraInfo& info) { return info.K[0] != 0.0; }
 
+// What cameraFromInfo reads: a camera sends the same with every frame.
+bool sameCalibration(const sensor_msgs::CameraInfo& a, const sensor_msgs::CameraInfo& b) {
+  return a.K == b.K && a.D == b.D && a.width == b.width && a.height == b.height;
+}
+
 }  // namespace
 
 TrackingNode::TrackingNode(ros::NodeHandle nh, ros::NodeHandle pnh, TrackingNodeOptions options,
@@ -172,6 +177,13 @@ void TrackingNode::flushStalledPair() {
 // Checked on arrival: a NaN or absurd number in K or D is logged and the camera_info left
 // out (the last good one, or the config, stays), never handed to the tracker.
 void TrackingNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info) {
+  {
+    std::lock_guard<std::mutex> lock(info_mutex_);
+    if (camera_info_ && sameCalibration(*camera_info_, *info)) {  // checked when it came first
+      camera_info_ = info;
+      return;
+    }
+  }
   if (calibrated(*info)) try {
       cameraFromInfo(*info, options_.config.camera);
     } catch (const std::invalid_argument& e) {
@@ -423,25 +435,26 @@ void TrackingNode::warnWhileHeldBack(double stamp, bool held_back) {
 }
 
 void TrackingNode::reportTrackingChange(double stamp, bool tracked) {
+  if (tracked_ == 0) return;  // before the first pose (relocalising in a loaded map) none was lost
   if (!tracked) {
-    if (!lost_since_ && tracked_ > 0) {
+    if (!lost_since_) {
       ROS_WARN_STREAM("tracking_node: lost at stamp "
                       << std::fixed << std::setprecision(3) << stamp
                       << "; relocalising against the map's keyframes"
                       << (options_.localisation_only && !options_.map.empty()
                               ? " (localisation only: a view the map does not hold stays lost)"
                               : ""));
+      lost_since_ = stamp;
+      lost_in_a_row_ = 0;
     }
-    if (!lost_since_) lost_since_ = stamp;
     ++lost_in_a_row_;
     return;
   }
-  if (lost_since_ && tracked_ > 0)
-    ROS_INFO_STREAM("tracking_node: tracking again after " << lost_in_a_row_ << " frame(s), "
-                                                           << std::fixed << std::setprecision(2)
-                                                           << stamp - *lost_since_ << " s lost");
+  if (!lost_since_) return;
+  ROS_INFO_STREAM("tracking_node: tracking again after " << lost_in_a_row_ << " frame(s), "
+                                                         << std::fixed << std::setprecision(2)
+                                                         << stamp - *lost_since_ << " s lost");
   lost_since_.reset();
-  lost_in_a_row_ = 0;
 }
 
 // Updates wait for the System (made at the first frame, in the map they build on).

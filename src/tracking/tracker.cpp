@@ -159,8 +159,7 @@ Eigen::Isometry3d Tracker::movedOn(double stamp) const {
 
 bool Tracker::farFromPrediction(const Frame& frame) const {
   if (!last_frame_ || (state_ == TrackingState::kOk && !has_velocity_)) return false;
-  // Where the solve and the last tracked frame put the camera centre.
-  const Eigen::Vector3d centre = frame.T_cw.inverse().translation();
+  const Eigen::Vector3d centre = frame.cameraCentre();  // where the solve put the camera
   const double dt = frame.stamp - last_frame_->stamp;
   // Tracking: the constant-velocity prediction. Relocalising within max_velocity_gap_s of the
   // last tracked frame: the prediction from the velocity it had (in 70 ms among people a
@@ -171,7 +170,7 @@ bool Tracker::farFromPrediction(const Frame& frame) const {
   // Later: no further than a carried camera moves in the time (in an unmapped stretch of a
   // corridor a relocalisation put the camera 3 m back after 0.2 s).
   const double reach = options_.max_prediction_error + options_.max_camera_speed * dt;
-  return (centre - last_frame_->T_cw.inverse().translation()).norm() > reach;
+  return (centre - last_frame_->cameraCentre()).norm() > reach;
 }
 
 bool Tracker::initialise(Frame& frame) {
