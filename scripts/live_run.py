@@ -3,7 +3,8 @@
 turtlebot3_d435i.launch as a robot runs it) at its
 recorded rate times RATE, as a robot would see it, on a roscore of its own. Meters both nodes
 (CPU seconds from /proc/PID/stat, peak resident memory VmHWM), reads tracking_node's ~stats at
-the end (frames posed, dropped, latencies), asks mapping_node's ~save_trajectory and scores it
+the end (frames posed, dropped, latencies, the longest follow of a map update), asks
+mapping_node's ~save_trajectory (its longest callback) and scores it
 with ply_slam_eval. Prints one JSON object; the logs stay in OUT.
 
 usage: live_run.py --bag B --config C --frames N --groundtruth GT --eval BIN --out OUT
@@ -15,6 +16,7 @@ the map's frame: aligned as REF (the trajectory of the run that made the map) is
 import argparse
 import json
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -98,6 +100,13 @@ class Stats:
     def done(self):
         v = self.values
         return v.get("tracked", 0) + v.get("lost", 0) + v.get("dropped_behind", 0)
+
+
+def longest_callback_cpu_ms(reply):
+    """mapping_node's save_trajectory reply: "...; longest keyframe or map-update callback W ms,
+    C ms of CPU)": C, or None in a reply without it."""
+    found = re.search(r"callback [0-9.]+ ms, ([0-9.]+) ms of CPU", reply)
+    return float(found.group(1)) if found else None
 
 
 def process_alive(pid, popen=None):
@@ -213,9 +222,10 @@ def main():
             result[name + "_peak_rss_mb"] = peak_rss_mb(pid)
         result["stats"] = stats.values
         trajectory = os.path.join(a.out, "CameraTrajectory.txt")
-        subprocess.run(["rosservice", "call", NS + "mapping_node/save_trajectory",
-                        "path: '%s'" % trajectory], env=env, check=True, capture_output=True,
-                       timeout=60)
+        saved = subprocess.run(["rosservice", "call", NS + "mapping_node/save_trajectory",
+                                "path: '%s'" % trajectory], env=env, check=True,
+                               capture_output=True, text=True, timeout=60)
+        result["mapper_callback_cpu_ms_max"] = longest_callback_cpu_ms(saved.stdout)
         in_map = ["--align-with", a.align_with, "--align-truth", a.align_truth] if a.map else []
         ate = subprocess.run([a.eval, "ate", a.groundtruth, trajectory, "--json"] + in_map,
                              capture_output=True, text=True, timeout=60)

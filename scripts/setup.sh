@@ -18,8 +18,8 @@ PLY_SLAM_PACKAGES=(
   ros-geometry-msgs ros-nav-msgs ros-visualization-msgs libstd-msgs-dev libstd-srvs-dev
   libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   libcv-bridge-dev libmessage-filters-dev libtf2-dev libtf2-ros-dev tf2-tools python3-sensor-msgs
-  python3-geometry-msgs python3-tf2-ros python3-std-msgs python3-nav-msgs python3-opencv python3-numpy python3-yaml
-  rviz
+  python3-geometry-msgs python3-tf2-ros python3-std-msgs python3-std-srvs python3-nav-msgs
+  python3-opencv python3-numpy python3-yaml rviz
   libpcl-dev liboctomap-dev nlohmann-json3-dev
   # scripts/yolo_onnx_for_opencv46.py and its test (test/python)
   python3-onnx

@@ -35,8 +35,12 @@ class BagReplay(unittest.TestCase):
         subprocess.run(["rosbag", "play", "--quiet", "--delay=1", "--rate=1", bag], check=True)
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= offline_frames, 30)
         apart = rospy.get_param("~apart", True)
-        if apart:
-            stats.wait_until(lambda s: s.get("updates_followed") >= s.get("keyframes"), 30)
+        if apart:  # mapping_node may be slower than the camera: waited for while it maps on
+            self.assertTrue(stats.wait_while_progressing(
+                lambda s: s.get("updates_followed") >= s.get("keyframes"),
+                lambda s: s.get("updates_followed")),
+                "mapping_node stopped mapping keyframes before the last (see its log): %s" %
+                stats.values)
 
         trajectory = os.path.join(work, "ros_trajectory.txt")
         support.save_trajectory(trajectory)
@@ -51,8 +55,6 @@ class BagReplay(unittest.TestCase):
         self.assertLessEqual(ate["rmse"], factor * offline_ate)
         if apart:
             self.assertGreater(stats.get("keyframes"), 0)
-            self.assertGreaterEqual(stats.get("updates_followed"), stats.get("keyframes"),
-                                    "mapping_node did not map every keyframe (see its log)")
         support.check_grid(self, os.path.join(work, "saved_map"))
         path.check(self, rospy.get_param("~path_period", 1.0))
 

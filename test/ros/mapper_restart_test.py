@@ -28,17 +28,28 @@ class MapperRestart(unittest.TestCase):
         work = support.work_dir()
         self.addCleanup(shutil.rmtree, work, True)
         frames, offline_ate, stats, player = support.slow_replay(sequence, work)
+        self.addCleanup(player.process.kill)
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= 3, 60))
+        player.pause()  # the mapper goes down at a known point, whatever the nodes' speed
         checked_run.run(["rosnode", "kill", MAPPER])
         down_at = stats.get("keyframes")
+        player.resume()
         self.assertTrue(stats.wait_until(lambda s: s.get("keyframes") >= down_at + 2, 60),
                         "no keyframe while the mapper was down")
+        player.pause()  # keyframes are left for the restarted mapper to map
         followed_at_restart = stats.get("updates_followed")
         mapper = subprocess.Popen([support.tool("mapping_node"), "__name:=mapping_node",
                                    "__ns:=/ply_slam"])
         self.addCleanup(mapper.terminate)
+        rospy.wait_for_service(support.SAVE_TRAJECTORY, timeout=120)
+        player.resume()
         self.assertEqual(player.wait(timeout=120), 0)
         stats.wait_until(lambda s: s.get("tracked") + s.get("lost") >= frames, 60)
+        if apart:  # the restarted mapping side maps the later keyframes; the tracker follows
+            self.assertTrue(stats.wait_while_progressing(
+                lambda s: s.get("updates_followed") > followed_at_restart,
+                lambda s: (s.get("keyframes"), s.get("updates_followed")), stall_s=60),
+                "no map update followed after the restart")
         time.sleep(2)  # the last messages reach the mapper
 
         message, ate, saved, ids, folder = support.saved_trajectory_and_map(sequence, work)

@@ -111,6 +111,53 @@ class StatsListener:
             time.sleep(0.1)
         return condition(self)
 
+    def wait_while_progressing(self, condition, progress, stall_s=30.0, limit_s=600.0):
+        """Waits until condition holds, as long as progress(self) keeps changing: a mapping side
+        slower than the camera (sanitized, or on a loaded machine) is waited for; one that has
+        stopped fails after stall_s without progress. True when the condition held."""
+        limit = time.time() + limit_s
+        last, stall = progress(self), time.time() + stall_s
+        while time.time() < min(stall, limit) and not rospy.is_shutdown():
+            if condition(self):
+                return True
+            time.sleep(0.1)
+            if progress(self) != last:
+                last, stall = progress(self), time.time() + stall_s
+        return condition(self)
+
+
+class PausablePlayer:
+    """rosbag play that the test pauses and resumes (its ~pause_playback service), so that what
+    the nodes get in between does not depend on how fast they are."""
+
+    def __init__(self, bag, rate):
+        from std_srvs.srv import SetBool
+        before = set(rosservice_list())
+        self.process = subprocess.Popen(["rosbag", "play", "--quiet", "--delay=1",
+                                         "--rate=%g" % rate, bag])
+        deadline = time.time() + 30
+        while time.time() < deadline:
+            found = [s for s in set(rosservice_list()) - before if s.endswith("/pause_playback")]
+            if found:
+                self.pause_service = rospy.ServiceProxy(found[0], SetBool)
+                return
+            time.sleep(0.2)
+        self.process.kill()
+        raise AssertionError("rosbag play did not offer pause_playback within 30 s")
+
+    def pause(self, paused=True):
+        self.pause_service(paused)
+
+    def resume(self):
+        self.pause(False)
+
+    def wait(self, timeout):
+        return self.process.wait(timeout=timeout)
+
+
+def rosservice_list():
+    return checked_run.run(["rosservice", "list"]).stdout.split()
+
 
 class PathListener:
     """The tracking node's ~path messages (wall time received, the poses' stamps) and its ~pose
@@ -252,14 +299,13 @@ def wait_for_nodes(timeout=30):
 
 def slow_replay(sequence, work):
     """The sequence as a bag played at rate 0.1 (37 frames: about 12 s) into nodes that are up,
-    with its offline run: (frames, offline ATE, the tracker's stats, the player's process)."""
+    with its offline run: (frames, offline ATE, the tracker's stats, the PausablePlayer)."""
     bag = os.path.join(work, "sequence.bag")
     tum_to_bag(sequence, bag)
     frames, offline_ate = offline_run(sequence, os.path.join(work, "offline"))
     stats = StatsListener()
     wait_for_nodes()
-    player = subprocess.Popen(["rosbag", "play", "--quiet", "--delay=1", "--rate=0.1", bag])
-    return frames, offline_ate, stats, player
+    return frames, offline_ate, stats, PausablePlayer(bag, 0.1)
 
 
 def saved_trajectory_and_map(sequence, work):
