@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdlib>
@@ -196,8 +197,7 @@ std::string passOf(double phase, bool in_map_frame) {
   for (int k = 0; k < 40; ++k) {
     const double x = std::cos(0.1 * k + phase), y = std::sin(0.13 * k + 2 * phase), z = 0.02 * k;
     text << 100 + k * 0.1 << ' ' << (in_map_frame ? -y + 1 : x) << ' ' << (in_map_frame ? x : y)
-         << ' ' << z << " 0 0 " << (in_map_frame ? "0.7071067811865476 0.7071067811865476"
-                                                  : "0 1")
+         << ' ' << z << " 0 0 " << (in_map_frame ? "0.7071067811865476 0.7071067811865476" : "0 1")
          << '\n';
   }
   return text.str();
@@ -213,7 +213,7 @@ TEST(ToolsCommandLine, EvalAlignsAnotherPassWithTheMapRunsOwnGroundTruth) {
   writeText(dir.path() / "gt2.txt", passOf(0.7, false));
   writeText(dir.path() / "pass2.txt", passOf(0.7, true));
   const auto rmse = [](const std::string& json) {
-    return std::stod(json.substr(json.find("\"rmse\": ") + 9));
+    return nlohmann::json::parse(json).at("rmse").get<double>();
   };
   Result r = run(dir, "ply_slam_eval",
                  "ate gt2.txt pass2.txt --json --align-with map_run.txt --align-truth gt1.txt");
@@ -359,10 +359,10 @@ TEST(ToolsCommandLine, PeakRssIsTheWholeRunsHighWaterMark) {
                        (dir.path() / "out").string(), "--no-loop"},
                       dir.path() / "log.txt");
   ASSERT_GT(measured, 0.0) << readAll(dir.path() / "log.txt");
-  const std::string summary = readAll(dir.path() / "out" / "summary.json");
-  const size_t at = summary.find("\"peak_rss_mb\": ");
-  ASSERT_NE(at, std::string::npos) << summary;
-  const double reported = std::stod(summary.substr(at + 15));
+  const nlohmann::json summary =
+      nlohmann::json::parse(readAll(dir.path() / "out" / "summary.json"));
+  ASSERT_TRUE(summary.contains("peak_rss_mb")) << summary;
+  const double reported = summary["peak_rss_mb"].get<double>();
   EXPECT_NEAR(reported, measured, 0.02 * measured) << "reported " << reported << " MiB";
 }
 
@@ -379,8 +379,9 @@ TEST(ToolsCommandLine, ASavedMapLoadsAgain) {
   EXPECT_TRUE(contains(readAll(dir.path() / "mapped" / "summary.json"), "\"saved\""));
   r = run(dir, "ply_slam_tum", tumArguments(sequence, "loaded") + " --max-frames 12 --map saved");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string summary = readAll(dir.path() / "loaded" / "summary.json");
-  EXPECT_TRUE(contains(summary, "\"first_tracked_frame\": 0")) << summary;
+  const nlohmann::json summary =
+      nlohmann::json::parse(readAll(dir.path() / "loaded" / "summary.json"));
+  EXPECT_EQ(summary["map"]["first_tracked_frame"], 0) << summary;
   r = run(dir, "ply_slam_tum", tumArguments(sequence, "none") + " --map nowhere");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_TRUE(contains(r.err, "nowhere/map.plymap") && contains(r.err, "cannot be opened"))

@@ -15,6 +15,9 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/eval/trajectory_association.h"
@@ -24,8 +27,9 @@
 
 namespace {
 
+using Json = nlohmann::ordered_json;  // keys in the order written
+
 constexpr int kExitData = 1;
-constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 const char* const kUsage =
     "usage: ply_slam_eval ate GT EST [--max-dt S] [--json] [--plot PNG]\n"
@@ -199,16 +203,19 @@ int runAte(const Options& options, const ply_slam::Trajectory& gt,
   std::optional<ply_slam::SimilarityAteResult> sim;
   if (options.align_with.empty()) sim = ply_slam::computeAteSimilarity(gt, est, options.max_dt);
   if (options.json) {
-    std::cout << "{\"pairs\": " << s.count << ", \"rmse\": " << number(s.rmse)
-              << ", \"mean\": " << number(s.mean) << ", \"median\": " << number(s.median)
-              << ", \"max\": " << number(s.max);
-    if (sim)
-      std::cout << ", \"sim3_scale\": " << number(sim->scale)
-                << ", \"sim3_rmse\": " << number(sim->translation.rmse);
-    std::cout << "}\n";
+    Json json = {{"pairs", s.count},
+                 {"rmse", s.rmse},
+                 {"mean", s.mean},
+                 {"median", s.median},
+                 {"max", s.max}};
+    if (sim) {
+      json["sim3_scale"] = sim->scale;
+      json["sim3_rmse"] = sim->translation.rmse;
+    }
+    std::cout << json.dump() << "\n";
   } else {
     const Eigen::Vector3d t = ate.T_gt_est.translation();
-    const double angle_deg = Eigen::AngleAxisd(ate.T_gt_est.linear()).angle() * kDegreesPerRadian;
+    const double angle_deg = ply_slam::rotationAngleDeg(ate.T_gt_est.linear());
     std::cout << "ATE (TUM, rigid alignment without scale"
               << (options.align_with.empty() ? "" : ", fitted to " + options.align_with) << ")\n"
               << "  ground truth  " << options.gt_path << " (" << gt.size() << " poses)\n"
@@ -245,13 +252,11 @@ int runRpe(const Options& options, const ply_slam::Trajectory& gt,
   requireFinite(t, "the RPE");
   requireFinite(r, "the RPE");
   if (options.json) {
-    std::cout << "{\"pairs\": " << t.count << ", \"trans_rmse\": " << number(t.rmse)
-              << ", \"trans_mean\": " << number(t.mean)
-              << ", \"trans_median\": " << number(t.median) << ", \"trans_max\": " << number(t.max)
-              << ", \"rot_rmse_deg\": " << number(r.rmse)
-              << ", \"rot_mean_deg\": " << number(r.mean)
-              << ", \"rot_median_deg\": " << number(r.median)
-              << ", \"rot_max_deg\": " << number(r.max) << "}\n";
+    const Json json = {
+        {"pairs", t.count},         {"trans_rmse", t.rmse},       {"trans_mean", t.mean},
+        {"trans_median", t.median}, {"trans_max", t.max},         {"rot_rmse_deg", r.rmse},
+        {"rot_mean_deg", r.mean},   {"rot_median_deg", r.median}, {"rot_max_deg", r.max}};
+    std::cout << json.dump() << "\n";
     return 0;
   }
   const std::string delta = options.delta_seconds

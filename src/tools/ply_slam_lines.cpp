@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/command_line.h"
@@ -37,6 +38,7 @@
 #include "ply_slam/io/tum_sequence.h"
 
 using namespace ply_slam;
+using Json = nlohmann::ordered_json;  // keys in the order written
 
 namespace {
 
@@ -103,16 +105,16 @@ std::string number(double v, int precision = 4) {
   return out.str();
 }
 
-std::string methodJson(const MethodReport& r) {
-  std::ostringstream out;
-  out << "{\"rate_mean\": " << number(mean(r.rates)) << ", \"accepted_lines\": " << r.accepted
-      << ", \"accepted_lines_matched\": " << r.accepted_matched
-      << ", \"endpoint_distances\": " << r.distances_px.size()
-      << ", \"distance_median_px\": " << number(median(r.distances_px, std::nan("")), 3)
-      << ", \"distance_mean_px\": " << number(mean(r.distances_px), 3)
-      << ", \"within_2px\": " << number(fraction(r.distances_px, 2.0), 3)
-      << ", \"fitting_ms_median\": " << number(median(r.fitting_ms, std::nan("")), 3) << "}";
-  return out.str();
+// NaN (no sample) is written as null.
+Json methodJson(const MethodReport& r) {
+  return {{"rate_mean", mean(r.rates)},
+          {"accepted_lines", r.accepted},
+          {"accepted_lines_matched", r.accepted_matched},
+          {"endpoint_distances", r.distances_px.size()},
+          {"distance_median_px", median(r.distances_px, std::nan(""))},
+          {"distance_mean_px", mean(r.distances_px)},
+          {"within_2px", fraction(r.distances_px, 2.0)},
+          {"fitting_ms_median", median(r.fitting_ms, std::nan(""))}};
 }
 
 void printMethod(const char* name, const MethodReport& r, int offset) {
@@ -226,19 +228,22 @@ void scoreAccuracy(const std::vector<Frame>& frames, int offset, const LineTools
 }
 
 void printJson(const Options& options, const std::string& detector, const LinesReport& r) {
-  std::cout << "{\"sequence\": \"" << options.sequence << "\", \"frames\": " << r.frames
-            << ", \"detector\": \"" << detector << "\""
-            << ", \"lines_per_frame\": " << number(mean(r.lines_per_frame), 2)
-            << ", \"offset\": " << options.offset << ", \"frame_pairs\": " << r.pairs
-            << ", \"descriptor_matches_per_pair\": " << number(r.perPair(r.matches_total), 2)
-            << ", \"gated_matches_per_pair\": " << number(r.perPair(r.gated_total), 2)
-            << ", \"sampled\": " << methodJson(r.sampled)
-            << ", \"endpoints\": " << methodJson(r.endpoints)
-            << ", \"timing_ms\": {\"extraction_median\": "
-            << number(median(r.extraction_ms, std::nan("")), 3)
-            << ", \"description_median\": " << number(median(r.description_ms, std::nan("")), 3)
-            << ", \"fitting_median\": " << number(median(r.sampled.fitting_ms, std::nan("")), 3)
-            << ", \"total_median\": " << number(median(r.total_ms, std::nan("")), 3) << "}}\n";
+  const Json timing = {{"extraction_median", median(r.extraction_ms, std::nan(""))},
+                       {"description_median", median(r.description_ms, std::nan(""))},
+                       {"fitting_median", median(r.sampled.fitting_ms, std::nan(""))},
+                       {"total_median", median(r.total_ms, std::nan(""))}};
+  const Json json = {{"sequence", options.sequence},
+                     {"frames", r.frames},
+                     {"detector", detector},
+                     {"lines_per_frame", mean(r.lines_per_frame)},
+                     {"offset", options.offset},
+                     {"frame_pairs", r.pairs},
+                     {"descriptor_matches_per_pair", r.perPair(r.matches_total)},
+                     {"gated_matches_per_pair", r.perPair(r.gated_total)},
+                     {"sampled", methodJson(r.sampled)},
+                     {"endpoints", methodJson(r.endpoints)},
+                     {"timing_ms", timing}};
+  std::cout << json.dump() << "\n";
 }
 
 void printText(const Options& options, const std::string& detector, const LinesReport& r) {

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
@@ -39,6 +40,7 @@
 
 namespace fs = std::filesystem;
 using namespace ply_slam;
+using Json = nlohmann::ordered_json;  // keys in the order written
 
 namespace {
 
@@ -430,13 +432,6 @@ void writeCandidates(const fs::path& out, const std::vector<CandidateRow>& rows)
   file.commit();
 }
 
-std::string jsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s << std::setprecision(6) << v;
-  return s.str();
-}
-
 // An accepted loop whose estimated motion is this close to the ground truth's (m, deg) would
 // correct the map rightly even where the pair misses the true-loop definition.
 constexpr double kMotionTolerance_m = 0.1, kMotionTolerance_deg = 2.0;
@@ -447,14 +442,12 @@ struct RunInfo {
   std::vector<double> add_ms;
 };
 
-// One curve's figures in summary.json.
-std::string curveJson(const PrCurve& c) {
-  std::ostringstream j;
-  j << "{\"auc\": " << jsonNumber(c.average_precision)
-    << ", \"recall_at_precision_1\": " << jsonNumber(c.recall_at_full_precision)
-    << ", \"alpha_at_precision_1\": " << jsonNumber(c.threshold_at_full_precision)
-    << ", \"decisions\": " << (c.points.empty() ? 0 : c.points.back().detections) << "}";
-  return j.str();
+// One curve's figures in summary.json (NaN: null).
+Json curveJson(const PrCurve& c) {
+  return {{"auc", c.average_precision},
+          {"recall_at_precision_1", c.recall_at_full_precision},
+          {"alpha_at_precision_1", c.threshold_at_full_precision},
+          {"decisions", c.points.empty() ? 0 : c.points.back().detections}};
 }
 
 // Each variant's curve by the definition and with the band counting neither way.
@@ -495,11 +488,37 @@ void writeCurves(const fs::path& out, const BothCurves& curves, const std::strin
               title + ", the band counting neither way");
 }
 
-void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
-                  const TruthTable& truth, const LoopRun& run, const BothCurves& curves,
-                  double alpha) {
+Json truthJson(const LoopGroundTruthParams& t, const TruthTable& truth) {
+  return {{"min_gap_s", t.min_gap_s},
+          {"max_distance_m", t.max_distance_m},
+          {"max_angle_deg", t.max_angle_deg},
+          {"min_overlap", t.min_overlap},
+          {"false_distance_m", t.false_distance_m},
+          {"false_angle_deg", t.false_angle_deg},
+          {"keyframes_with_ground_truth", truth.views_with_pose},
+          {"pairs", truth.pairs.size()},
+          {"dont_care_pairs", truth.dont_care.size()},
+          {"queries", truth.queries.size()}};
+}
+
+Json loopJson(const AcceptedLoop& a) {
+  return {{"query", a.query},
+          {"candidate", a.candidate},
+          {"inliers_3d", a.inliers_3d},
+          {"reprojection_inliers", a.reprojection_inliers},
+          {"truth", truthWord(a.truth)},
+          {"gt_distance_m", a.gt_distance_m},
+          {"gt_angle_deg", a.gt_angle_deg},
+          {"motion_error_m", a.motion_error_m},
+          {"motion_error_deg", a.motion_error_deg},
+          {"stamps", {a.query_stamp, a.candidate_stamp}},
+          {"overlap", a.overlap}};
+}
+
+Json acceptedJson(const LoopRun& run, double alpha) {
   long correct = 0, dont_care = 0, consistent = 0;
   double worst_m = 0.0, worst_deg = 0.0;
+  Json loops = Json::array();
   for (const AcceptedLoop& a : run.accepted) {
     correct += a.truth == LoopTruth::kTrue;
     dont_care += a.truth == LoopTruth::kDontCare;
@@ -507,68 +526,64 @@ void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
         a.motion_error_m <= kMotionTolerance_m && a.motion_error_deg <= kMotionTolerance_deg;
     worst_m = std::max(worst_m, a.motion_error_m);
     worst_deg = std::max(worst_deg, a.motion_error_deg);
+    loops.push_back(loopJson(a));
   }
-  AtomicFile file((out / "summary.json").string());
-  std::ostream& j = file.stream();
-  j << "{\n  \"sequence\": \"" << o.sequence << "\",\n  \"config\": \"" << o.config
-    << "\",\n  \"segmenter\": \"" << o.segmentation.kind << "\",\n  \"frames\": " << info.frames
-    << ",\n  \"lost_frames\": " << info.lost << ",\n  \"keyframes\": " << info.keyframes
-    << ",\n  \"mean_lines_per_keyframe\": " << jsonNumber(info.mean_lines)
-    << ",\n  \"mean_instances_per_keyframe\": " << jsonNumber(info.mean_instances)
-    << ",\n  \"true_loops\": {\"min_gap_s\": " << o.truth.min_gap_s
-    << ", \"max_distance_m\": " << o.truth.max_distance_m
-    << ", \"max_angle_deg\": " << o.truth.max_angle_deg
-    << ", \"min_overlap\": " << o.truth.min_overlap
-    << ", \"false_distance_m\": " << o.truth.false_distance_m
-    << ", \"false_angle_deg\": " << o.truth.false_angle_deg
-    << ", \"keyframes_with_ground_truth\": " << truth.views_with_pose
-    << ", \"pairs\": " << truth.pairs.size() << ", \"dont_care_pairs\": " << truth.dont_care.size()
-    << ", \"queries\": " << truth.queries.size() << "},\n  \"queries\": {\"judged\": " << run.judged
-    << ", \"mean_candidates\": "
-    << jsonNumber(double(run.candidates) / std::max<long>(1, info.keyframes))
-    << ", \"mean_covisible\": "
-    << jsonNumber(double(run.covisible) / std::max<long>(1, info.keyframes))
-    << "},\n  \"variants\": {";
+  const long count = static_cast<long>(run.accepted.size());
+  return {{"alpha", alpha},
+          {"count", count},
+          {"correct", correct},
+          {"dont_care", dont_care},
+          {"false", count - correct - dont_care},
+          {"precision", count == 0 ? 1.0 : double(correct) / count},
+          {"precision_with_band", count == dont_care ? 1.0 : double(correct) / (count - dont_care)},
+          {"motion_within_tolerance", consistent},
+          {"motion_tolerance", {kMotionTolerance_m, kMotionTolerance_deg}},
+          {"max_motion_error_m", worst_m},
+          {"max_motion_error_deg", worst_deg},
+          {"loops", loops}};
+}
+
+Json timingJson(const RunInfo& info, const LoopRun& run) {
+  return {{"vocabulary_load", info.vocabulary_load_ms},
+          {"add_keyframe_median", median(info.add_ms, 0.0)},
+          {"query_median", median(run.score_ms, 0.0)},
+          {"query_max", percentile(run.score_ms, 1.0, 0.0)},
+          {"geometric_check_median", median(run.check_ms, 0.0)},
+          {"geometric_check_max", percentile(run.check_ms, 1.0, 0.0)}};
+}
+
+void writeSummary(const fs::path& out, const Options& o, const RunInfo& info,
+                  const TruthTable& truth, const LoopRun& run, const BothCurves& curves,
+                  double alpha) {
+  const double keyframes = static_cast<double>(std::max<long>(1, info.keyframes));
+  Json variants = Json::object();
   for (size_t v = 0; v < curves.by_definition.size(); ++v)
-    j << (v ? ", " : "") << "\n    \"" << curves.by_definition[v].first
-      << "\": {\"by_definition\": " << curveJson(curves.by_definition[v].second)
-      << ", \"with_band\": " << curveJson(curves.with_band[v].second) << "}";
-  j << "\n  },\n  \"accepted_loops\": {\"alpha\": " << alpha
-    << ", \"count\": " << run.accepted.size() << ", \"correct\": " << correct
-    << ", \"dont_care\": " << dont_care
-    << ", \"false\": " << run.accepted.size() - correct - dont_care << ", \"precision\": "
-    << jsonNumber(run.accepted.empty() ? 1.0 : double(correct) / run.accepted.size())
-    << ", \"precision_with_band\": "
-    << jsonNumber(run.accepted.size() == static_cast<size_t>(dont_care)
-                      ? 1.0
-                      : double(correct) / (run.accepted.size() - dont_care))
-    << ", \"motion_within_tolerance\": " << consistent << ", \"motion_tolerance\": ["
-    << kMotionTolerance_m << ", " << kMotionTolerance_deg
-    << "], \"max_motion_error_m\": " << jsonNumber(worst_m)
-    << ", \"max_motion_error_deg\": " << jsonNumber(worst_deg) << ", \"loops\": [";
-  for (size_t i = 0; i < run.accepted.size(); ++i) {
-    const AcceptedLoop& a = run.accepted[i];
-    j << (i ? ", " : "") << "{\"query\": " << a.query << ", \"candidate\": " << a.candidate
-      << ", \"inliers_3d\": " << a.inliers_3d
-      << ", \"reprojection_inliers\": " << a.reprojection_inliers << ", \"truth\": \""
-      << truthWord(a.truth) << "\""
-      << ", \"gt_distance_m\": " << jsonNumber(a.gt_distance_m)
-      << ", \"gt_angle_deg\": " << jsonNumber(a.gt_angle_deg)
-      << ", \"motion_error_m\": " << jsonNumber(a.motion_error_m)
-      << ", \"motion_error_deg\": " << jsonNumber(a.motion_error_deg) << ", \"stamps\": ["
-      << std::setprecision(17) << a.query_stamp << ", " << a.candidate_stamp
-      << "], \"overlap\": " << jsonNumber(a.overlap) << "}";
-  }
-  j << "]},\n  \"geometry_on_best_candidates\": {\"checked\": " << run.geometry_checked
-    << ", \"passed_true\": " << run.geometry_passed_true
-    << ", \"passed_dont_care\": " << run.geometry_passed_dont_care
-    << ", \"passed_false\": " << run.geometry_passed_false << "},\n  \"timing_ms\": {"
-    << "\"vocabulary_load\": " << jsonNumber(info.vocabulary_load_ms)
-    << ", \"add_keyframe_median\": " << jsonNumber(median(info.add_ms, 0.0))
-    << ", \"query_median\": " << jsonNumber(median(run.score_ms, 0.0))
-    << ", \"query_max\": " << jsonNumber(percentile(run.score_ms, 1.0, 0.0))
-    << ", \"geometric_check_median\": " << jsonNumber(median(run.check_ms, 0.0))
-    << ", \"geometric_check_max\": " << jsonNumber(percentile(run.check_ms, 1.0, 0.0)) << "}\n}\n";
+    variants[curves.by_definition[v].first] = {
+        {"by_definition", curveJson(curves.by_definition[v].second)},
+        {"with_band", curveJson(curves.with_band[v].second)}};
+  const Json json = {{"sequence", o.sequence},
+                     {"config", o.config},
+                     {"segmenter", o.segmentation.kind},
+                     {"frames", info.frames},
+                     {"lost_frames", info.lost},
+                     {"keyframes", info.keyframes},
+                     {"mean_lines_per_keyframe", info.mean_lines},
+                     {"mean_instances_per_keyframe", info.mean_instances},
+                     {"true_loops", truthJson(o.truth, truth)},
+                     {"queries",
+                      {{"judged", run.judged},
+                       {"mean_candidates", run.candidates / keyframes},
+                       {"mean_covisible", run.covisible / keyframes}}},
+                     {"variants", variants},
+                     {"accepted_loops", acceptedJson(run, alpha)},
+                     {"geometry_on_best_candidates",
+                      {{"checked", run.geometry_checked},
+                       {"passed_true", run.geometry_passed_true},
+                       {"passed_dont_care", run.geometry_passed_dont_care},
+                       {"passed_false", run.geometry_passed_false}}},
+                     {"timing_ms", timingJson(info, run)}};
+  AtomicFile file((out / "summary.json").string());
+  file.stream() << json.dump(2) << "\n";
   file.commit();
 }
 

@@ -20,8 +20,10 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
@@ -36,6 +38,7 @@
 
 namespace fs = std::filesystem;
 using namespace ply_slam;
+using Json = nlohmann::ordered_json;  // keys in the order written
 
 namespace {
 
@@ -139,7 +142,7 @@ AlignedGroundTruth alignGroundTruth(const Trajectory& gt, const Trajectory& keyf
     a.T_wc[i] = T_est_gt * a.T_wc[i];
     const Eigen::Isometry3d error = est[i].inverse() * a.T_wc[i];
     position += error.translation().squaredNorm();
-    angle += std::pow(Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI, 2);
+    angle += std::pow(rotationAngleDeg(error.linear()), 2);
   }
   a.position_rmse = std::sqrt(position / est.size());
   a.rotation_rmse_deg = std::sqrt(angle / est.size());
@@ -162,19 +165,16 @@ AlignedGroundTruth fitClockOffset(const Trajectory& gt, const Trajectory& keyfra
   return best;
 }
 
-std::string comparisonJson(const AlignedGroundTruth& a, const VoxelAgreement& r,
-                           const std::string& indent) {
-  std::ostringstream json;
-  json << std::setprecision(6) << indent << "\"clock_offset_s\": " << a.offset << ",\n"
-       << indent << "\"keyframe_position_rmse_m\": " << a.position_rmse << ",\n"
-       << indent << "\"keyframe_rotation_rmse_deg\": " << a.rotation_rmse_deg << ",\n"
-       << indent << "\"occupied_estimated\": " << r.a << ",\n"
-       << indent << "\"occupied_ground_truth\": " << r.b << ",\n"
-       << indent << "\"occupied_both\": " << r.both << ",\n"
-       << indent << "\"strict_iou\": " << r.iou << ",\n"
-       << indent << "\"strict_estimated_in_ground_truth\": " << r.a_in_b << ",\n"
-       << indent << "\"tolerant_within_one_voxel\": " << r.tolerant;
-  return json.str();
+Json comparisonJson(const AlignedGroundTruth& a, const VoxelAgreement& r) {
+  return {{"clock_offset_s", a.offset},
+          {"keyframe_position_rmse_m", a.position_rmse},
+          {"keyframe_rotation_rmse_deg", a.rotation_rmse_deg},
+          {"occupied_estimated", r.a},
+          {"occupied_ground_truth", r.b},
+          {"occupied_both", r.both},
+          {"strict_iou", r.iou},
+          {"strict_estimated_in_ground_truth", r.a_in_b},
+          {"tolerant_within_one_voxel", r.tolerant}};
 }
 
 int run(const Options& options) {
@@ -229,20 +229,17 @@ int run(const Options& options) {
   const VoxelAgreement r_recorded = compare(at_recorded);
   const VoxelAgreement r = shifted ? compare(at_fitted) : r_recorded;
 
-  std::ostringstream json;
-  json << std::setprecision(6) << "{\n  \"sequence\": \"" << sequence.folder()
-       << "\",\n  \"keyframes\": " << keyframes.size()
-       << ",\n  \"octree_resolution\": " << dense.octree_resolution
-       << ",\n  \"clock_offset_fitted\": " << (options.fit_clock_offset ? "true" : "false") << ",\n"
-       << comparisonJson(fitted, r, "  ");
-  if (options.fit_clock_offset)
-    json << ",\n  \"at_recorded_stamps\": {\n"
-         << comparisonJson(recorded, r_recorded, "    ") << "\n  }";
-  json << "\n}\n";
-  std::cout << json.str();
+  Json json = {{"sequence", sequence.folder()},
+               {"keyframes", keyframes.size()},
+               {"octree_resolution", dense.octree_resolution},
+               {"clock_offset_fitted", options.fit_clock_offset}};
+  json.update(comparisonJson(fitted, r));
+  if (options.fit_clock_offset) json["at_recorded_stamps"] = comparisonJson(recorded, r_recorded);
+  const std::string text = json.dump(2) + "\n";
+  std::cout << text;
   if (!options.out.empty()) {
     fs::create_directories(options.out);
-    writeTextFileAtomically((fs::path(options.out) / "map_compare.json").string(), json.str());
+    writeTextFileAtomically((fs::path(options.out) / "map_compare.json").string(), text);
   }
   return 0;
 }

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
@@ -144,10 +145,12 @@ void writeTimingJson(const std::string& file, const OdometryRun& run, double med
                      double mean_ms) {
   createParentFolder(file);
   ply_slam::AtomicFile out(file);
-  out.stream() << "{\n  \"method\": \"opencv_rgbd_odometry\",\n  \"frames\": "
-               << run.trajectory.size() << ",\n  \"failures\": " << run.failures
-               << ",\n  \"tracking_ms_median\": " << median_ms
-               << ",\n  \"tracking_ms_mean\": " << mean_ms << "\n}\n";
+  const nlohmann::ordered_json json = {{"method", "opencv_rgbd_odometry"},
+                                       {"frames", run.trajectory.size()},
+                                       {"failures", run.failures},
+                                       {"tracking_ms_median", median_ms},
+                                       {"tracking_ms_mean", mean_ms}};
+  out.stream() << json.dump(2) << "\n";
   out.commit();
 }
 
