@@ -137,8 +137,11 @@ TEST(YoloV8Seg, WrongInputSizeIsExplained) {
 TEST(YoloV8Seg, TransposedInputSizeIsRefusedAtLoad) {
   const std::string model_path = test::sharedPath("models/yolov8n-seg-480x640.onnx");
   PLY_SLAM_REQUIRE_SHARED(model_path);
-  EXPECT_EQ(readOnnxInputShape(model_path), (std::vector<std::int64_t>{1, 3, 480, 640}));
-  EXPECT_EQ(readOnnxInputShape(test::sharedPath("models/yolov8n-seg-320x320.onnx")),
+  const auto shapeOf = [](const std::string& path) {
+    return onnxInputShape(readOnnxModelFile(path), path);
+  };
+  EXPECT_EQ(shapeOf(model_path), (std::vector<std::int64_t>{1, 3, 480, 640}));
+  EXPECT_EQ(shapeOf(test::sharedPath("models/yolov8n-seg-320x320.onnx")),
             (std::vector<std::int64_t>{1, 3, 320, 320}));
   YoloOptions params;
   params.model_path = model_path;
@@ -162,12 +165,12 @@ TEST(YoloV8Seg, AFileThatIsNoOnnxModelIsNamed) {
   const std::string path = std::string(PLY_SLAM_SOURCE_DIR) + "/config/tum_fr1.yaml";
   std::vector<std::int64_t> shape;
   try {
-    shape = readOnnxInputShape(path);
+    shape = onnxInputShape(readOnnxModelFile(path), path);
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
   EXPECT_TRUE(shape.empty());  // no shape read from what is no model
-  EXPECT_THROW(readOnnxInputShape("/nonexistent/model.onnx"), std::runtime_error);
+  EXPECT_THROW(readOnnxModelFile("/nonexistent/model.onnx"), std::runtime_error);
 }
 
 }  // namespace

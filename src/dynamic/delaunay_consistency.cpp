@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 
+#include "ply_slam/common/rigid_alignment.h"
 #include "ply_slam/common/statistics.h"
 
 namespace ply_slam {
@@ -39,17 +40,13 @@ std::vector<std::array<size_t, 3>> distinctTriples(size_t n, int rounds) {
 
 Eigen::Isometry3d DelaunayConsistency::rigidMotion(
     const std::vector<FeatureCorrespondence>& features, const std::vector<bool>& use) const {
-  const long n = std::count(use.begin(), use.end(), true);
-  Eigen::Matrix3Xd from(3, n), to(3, n);
-  long k = 0;
+  std::vector<Eigen::Vector3d> from, to;
   for (size_t i = 0; i < features.size(); ++i)
     if (use[i]) {
-      from.col(k) = features[i].previous;
-      to.col(k++) = features[i].current;
+      from.push_back(features[i].previous);
+      to.push_back(features[i].current);
     }
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  if (n >= 3) T.matrix() = Eigen::umeyama(from, to, false);
-  return T;
+  return from.size() >= 3 ? alignRigid(from, to) : Eigen::Isometry3d::Identity();
 }
 
 DelaunayConsistency::Change DelaunayConsistency::residual(const FeatureCorrespondence& f,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "ply_slam/common/angles.h"
+
 namespace ply_slam {
 namespace {
 
@@ -22,7 +24,7 @@ LineError lineError(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
   const double distance = std::max(distanceToSegment(start, truth), distanceToSegment(end, truth));
   const double cosine =
       std::min(1.0, std::abs((end - start).normalized().dot((truth.b - truth.a).normalized())));
-  return {distance, std::acos(cosine) * 180.0 / M_PI};
+  return {distance, degrees(std::acos(cosine))};
 }
 
 LineError lineError(const Eigen::Vector3d& start, const Eigen::Vector3d& end,
@@ -49,7 +51,7 @@ std::vector<size_t> imagedSegments(const LineFeature& line, const std::vector<Se
     const Eigen::Vector2d pa = camera.project(a), pb = camera.project(b);
     if ((pb - pa).norm() < 1.0) continue;
     const Eigen::Vector2d e = (pb - pa).normalized();
-    if (std::acos(std::min(1.0, std::abs(d.dot(e)))) * 180.0 / M_PI > max_deg) continue;
+    if (degrees(std::acos(std::min(1.0, std::abs(d.dot(e))))) > max_deg) continue;
     const Eigen::Vector2d n(-e.y(), e.x());
     const double ds = std::abs(n.dot(line.start - pa)), de = std::abs(n.dot(line.end - pa));
     if (std::max(ds, de) > max_px) continue;

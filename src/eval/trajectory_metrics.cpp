@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/eval/trajectory_association.h"
 
@@ -17,7 +18,6 @@ namespace {
 // first pose at least delta_seconds later": differences of stamps near 1e9 s carry rounding
 // noise of ~1e-7 s, far below any frame interval.
 constexpr double kStampTolerance = 1e-6;
-constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 ErrorStats summarize(std::vector<double> errors) {
   ErrorStats stats;
@@ -80,16 +80,6 @@ RpeResult relativeErrors(const PosePairs& poses, const std::vector<std::pair<siz
   result.rotation = summarize(std::move(rotation_errors));
   return result;
 }
-
-}  // namespace
-
-double rotationAngleDeg(const Eigen::Matrix3d& R) {
-  // AngleAxis goes through a quaternion (atan2), accurate also for tiny angles where
-  // acos((trace - 1) / 2) loses all digits.
-  return Eigen::AngleAxisd(R).angle() * kDegreesPerRadian;
-}
-
-namespace {
 
 struct AssociatedPositions {
   std::vector<Eigen::Vector3d> gt, est;

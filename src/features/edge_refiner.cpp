@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/features/weighted_line_fit.h"
 
 namespace ply_slam {
@@ -72,7 +73,7 @@ bool EdgeRefiner::refine(const cv::Mat& gray, Eigen::Vector2d& start, Eigen::Vec
   if (points.size() < needed || !fitWeightedLine(points, centroid, direction)) return false;
 
   if (direction.dot(d) < 0.0) direction = -direction;
-  if (std::acos(std::min(1.0, direction.dot(d))) * 180.0 / M_PI > kMaxTurn) return false;
+  if (degrees(std::acos(std::min(1.0, direction.dot(d)))) > kMaxTurn) return false;
   const Eigen::Vector2d new_start = centroid + direction * direction.dot(start - centroid);
   const Eigen::Vector2d new_end = centroid + direction * direction.dot(end - centroid);
   if ((new_start - start).norm() > kMaxShift || (new_end - end).norm() > kMaxShift) return false;

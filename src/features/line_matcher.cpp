@@ -1,5 +1,6 @@
 #include "ply_slam/features/line_matcher.h"
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/hamming.h"
 #include "ply_slam/features/best_two.h"
 #include "ply_slam/features/line_distance.h"
@@ -36,9 +37,7 @@ struct LineMatcher::Observed {
 };
 
 LineMatcher::LineMatcher(const LineOptions& params, const PinholeCamera& camera)
-    : params_(params),
-      camera_(camera),
-      cos_max_angle_(std::cos(params.match_angle_deg * M_PI / 180.0)) {}
+    : params_(params), camera_(camera), cos_max_angle_(std::cos(radians(params.match_angle_deg))) {}
 
 bool LineMatcher::projectedPasses(const Projected& p) const {
   if (p.length < 1.0) return false;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/features/line_distance.h"
 #include "ply_slam/features/weighted_line_fit.h"
 
@@ -41,7 +42,7 @@ LineFeature join(const LineFeature& a, const LineFeature& b) {
 }  // namespace
 
 LineMerger::LineMerger(const LineOptions& params)
-    : max_angle_rad_(params.merge_angle_deg * M_PI / 180.0),
+    : max_angle_rad_(radians(params.merge_angle_deg)),
       max_distance_px_(params.merge_distance_px),
       max_gap_px_(params.merge_gap_px) {}
 

@@ -5,8 +5,8 @@
 #include <random>
 #include <utility>
 
-#include "ply_slam/eval/rigid_alignment.h"
-#include "ply_slam/eval/trajectory_metrics.h"
+#include "ply_slam/common/angles.h"
+#include "ply_slam/common/rigid_alignment.h"
 
 namespace ply_slam {
 namespace {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/map/by_id.h"
 
 namespace ply_slam {
@@ -135,7 +136,7 @@ void LandmarkCreator::addLines(Frame& frame, KeyFrame& kf) {
 void LandmarkCreator::fuseLineFits(const Frame& frame) {
   const DepthNoiseModel& noise = camera_.depth_noise;
   const Eigen::Isometry3d T_wc = frame.T_cw.inverse();
-  const double min_cos = std::cos(line_match_angle_deg_ * M_PI / 180.0);
+  const double min_cos = std::cos(radians(line_match_angle_deg_));
   for (size_t i = 0; i < frame.map_lines.size(); ++i) {
     const Line3D& fit = frame.lines.lines3d[i];
     if (!frame.map_lines[i] || !fit.valid) continue;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/mapping/carry_along.h"
 
@@ -48,8 +49,7 @@ LoopShift loopShift(const KeyFrame& query, const KeyFrame& candidate,
   LoopShift shift;
   shift.query_T_wc = candidate.T_wc() * T_query_candidate.inverse();
   shift.moved_m = (shift.query_T_wc.translation() - query.T_wc().translation()).norm();
-  shift.turned_deg =
-      Eigen::AngleAxisd(shift.query_T_wc.linear() * query.T_cw.linear()).angle() * 180.0 / M_PI;
+  shift.turned_deg = rotationAngleDeg(shift.query_T_wc.linear() * query.T_cw.linear());
   return shift;
 }
 

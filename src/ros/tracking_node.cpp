@@ -13,6 +13,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/ros/conversions.h"
@@ -551,7 +552,7 @@ void TrackingNode::addToPath(const geometry_msgs::PoseStamped& pose,
   const bool moved =
       path_.poses.empty() || (T_wc.translation() - last_path_pose_.translation()).norm() > 0.01 ||
       Eigen::AngleAxisd(T_wc.linear() * last_path_pose_.linear().transpose()).angle() >
-          1.0 * M_PI / 180.0;
+          radians(1.0);
   if (!moved) return;
   if (path_.poses.size() >= kMaxPathPoses)
     path_.poses.erase(path_.poses.begin(), path_.poses.begin() + kMaxPathPoses / 2);

@@ -122,11 +122,16 @@ std::vector<std::int64_t> inputShape(const std::string& bytes) {
 
 }  // namespace
 
-std::vector<std::int64_t> readOnnxInputShape(const std::string& path) {
+std::string readOnnxModelFile(const std::string& path) {
   refuseSpecialFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot read the ONNX model");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw std::runtime_error(path + ": read error in the ONNX model");
+  return bytes;
+}
+
+std::vector<std::int64_t> onnxInputShape(const std::string& bytes, const std::string& path) {
   try {
     return inputShape(bytes);
   } catch (const std::runtime_error& e) {

@@ -56,8 +56,7 @@ std::vector<std::string> readClassNames(const std::string& path) {
 // A fixed-size export runs on any input of its area: 480x640 into a 640x480 export gives
 // boxes and masks from the wrong anchors (person IoU 0.59 instead of 0.91) without an error.
 // A size of 0 takes the export's own.
-void resolveInputSize(YoloOptions& params) {
-  const std::vector<std::int64_t> shape = readOnnxInputShape(params.model_path);
+void resolveInputSize(YoloOptions& params, const std::vector<std::int64_t>& shape) {
   const bool fixed = shape.size() == 4 && shape[2] > 0 && shape[3] > 0;
   if (params.input_width == 0) {
     if (!fixed)
@@ -223,14 +222,14 @@ YoloV8Seg::YoloV8Seg(const YoloOptions& params) : params_(params) {
     throw std::runtime_error("no YOLOv8-seg model given (config segmentation.model or --model)");
   if (!std::filesystem::exists(params_.model_path))
     throw std::runtime_error(params_.model_path + ": YOLOv8-seg model file missing");
-  refuseSpecialFile(params_.model_path);
+  const std::string bytes = readOnnxModelFile(params_.model_path);  // the net and its shape
   try {
-    net_ = cv::dnn::readNetFromONNX(params_.model_path);
+    net_ = cv::dnn::readNetFromONNX(bytes.data(), bytes.size());
   } catch (const cv::Exception& e) {
     throw std::runtime_error(params_.model_path + ": OpenCV cannot load the model: " + e.what());
   }
   if (net_.empty()) throw std::runtime_error(params_.model_path + ": OpenCV loaded an empty net");
-  resolveInputSize(params_);
+  resolveInputSize(params_, onnxInputShape(bytes, params_.model_path));
   requireAvailable(params_);
   net_.setPreferableBackend(openCvOf(kBackends, params_.backend));
   net_.setPreferableTarget(openCvOf(kTargets, params_.target));

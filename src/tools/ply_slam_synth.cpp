@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ply_slam/common/angles.h"
 #include "ply_slam/common/command_line.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/synth/synthetic_sequence.h"
@@ -131,8 +132,8 @@ int run(const Options& o) {
             << "render " << s.render_ms / s.frames << " ms/frame ("
             << 1000.0 * s.frames / s.render_ms << " frames/s), PNG writing "
             << s.write_ms / s.frames << " ms/frame; camera path " << std::setprecision(2)
-            << seq.path().meanLinearSpeed() << " m/s, "
-            << seq.path().meanAngularSpeed() * 180.0 / 3.14159265358979 << " deg/s\n";
+            << seq.path().meanLinearSpeed() << " m/s, " << degrees(seq.path().meanAngularSpeed())
+            << " deg/s\n";
   return 0;
 }
 

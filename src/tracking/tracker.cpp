@@ -8,6 +8,8 @@
 #include <opencv2/features2d.hpp>
 #include <unordered_set>
 
+#include "ply_slam/common/angles.h"
+
 namespace ply_slam {
 namespace {
 
@@ -18,10 +20,6 @@ PoseOptimizerParams optimizerParams(const TrackingOptions& t) {
   p.rounds = t.optimisation_rounds;
   p.solver = t.pose_solver;
   return p;
-}
-
-double rotationAngleDeg(const Eigen::Isometry3d& T) {
-  return Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI;
 }
 
 // The landmarks (points or lines) of the keyframes, each once, not bad, in keyframe order.
@@ -417,7 +415,7 @@ bool Tracker::needKeyFrame(const Frame& frame, int inliers) const {
   if (inliers < t.keyframe_min_ratio * last_keyframe_->trackedPoints(2)) return true;
   const Eigen::Isometry3d motion = last_keyframe_->T_cw * frame.T_cw.inverse();
   return motion.translation().norm() > t.keyframe_translation ||
-         rotationAngleDeg(motion) > t.keyframe_rotation_deg;
+         rotationAngleDeg(motion.linear()) > t.keyframe_rotation_deg;
 }
 
 }  // namespace ply_slam

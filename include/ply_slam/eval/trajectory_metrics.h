@@ -3,8 +3,9 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 
+#include "ply_slam/common/angles.h"           // rotationAngleDeg
+#include "ply_slam/common/rigid_alignment.h"  // the ATE aligns with alignRigid
 #include "ply_slam/common/stamped_pose.h"
-#include "ply_slam/eval/rigid_alignment.h"  // the ATE aligns with alignRigid
 
 namespace ply_slam {
 
@@ -28,9 +29,6 @@ struct RpeResult {
   ErrorStats translation;  // m
   ErrorStats rotation;     // degrees
 };
-
-// The angle of a rotation, degrees (through AngleAxis: exact also for tiny angles).
-double rotationAngleDeg(const Eigen::Matrix3d& R);
 
 // Absolute trajectory error, TUM definition: associate stamps within max_dt, align, RMSE etc.
 // Throws std::runtime_error when fewer than 3 pairs associate.

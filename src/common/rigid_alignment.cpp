@@ -1,5 +1,5 @@
 // Kept apart from the metrics: the only numerical-linear-algebra piece of the evaluation.
-#include "ply_slam/eval/rigid_alignment.h"
+#include "ply_slam/common/rigid_alignment.h"
 
 #include <Eigen/SVD>
 #include <stdexcept>
