@@ -5,7 +5,8 @@
 // and its direction within 1 degree. The map's world frame is the first camera's true pose, so
 // the keyframes' pose errors count too. Measured with the generator's sensor noise, 100 frames:
 // fused 76.6 / 79.8 / 88.2 % good (directions 82.0 / 88.9 / 96.1 %) against 72.1 / 73.5 /
-// 74.1 % (74.6 / 76.5 / 87.0 %) when each map line kept its first fit (docs/RESULTS.md).
+// 74.1 % (74.6 / 76.5 / 87.0 %) when each map line kept its first fit (docs/EXPERIMENTS.md,
+// issue #4).
 #include <gtest/gtest.h>
 
 #include <iostream>
