@@ -18,9 +18,9 @@ LandmarkFuser::LandmarkFuser(const PinholeCamera& camera, const OrbOptions& orb,
       radius_px_(options.fuse_radius_px),
       max_distance_(options.fuse_max_descriptor_distance) {}
 
-int LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
-                        const std::vector<KeyFrame*>& neighbours) const {
-  int changes = 0;
+FusionCounts LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
+                                 const std::vector<KeyFrame*>& neighbours) const {
+  FusionCounts changes;
   // Neighbours' landmarks into the new keyframe.
   std::vector<std::shared_ptr<MapPoint>> candidates;
   std::unordered_set<const MapPoint*> seen;
@@ -37,13 +37,13 @@ int LandmarkFuser::fuse(Map& map, KeyFrame& keyframe,
   return changes;
 }
 
-int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
-                            const std::vector<std::shared_ptr<MapPoint>>& points) const {
+FusionCounts LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
+                                     const std::vector<std::shared_ptr<MapPoint>>& points) const {
   const auto& cam = camera_;
   const auto& f = target.features;
   const Eigen::Vector3d centre = target.T_wc().translation();
   const int num_levels = num_levels_;
-  int changes = 0;
+  FusionCounts changes;
   for (const auto& p : points) {
     if (p->bad || p->seenBy(&target)) continue;
     const Eigen::Vector3d pc = target.T_cw * p->position;
@@ -82,16 +82,15 @@ int LandmarkFuser::fuseInto(Map& map, KeyFrame& target,
     if (!existing || existing->bad) {
       if (existing) map.removeObservation(target, static_cast<size_t>(best_index));
       map.addObservation(target, static_cast<size_t>(best_index), p);
+      ++changes.observations_added;
     } else if (existing != p) {
       // One corner, two landmarks: keep the better established one.
       if (existing->observations() >= p->observations())
         map.replace(p, existing);
       else
         map.replace(existing, p);
-    } else {
-      continue;
+      ++changes.landmarks_merged;
     }
-    ++changes;
   }
   return changes;
 }

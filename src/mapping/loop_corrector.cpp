@@ -111,7 +111,8 @@ std::vector<std::pair<KeyFrame*, KeyFrame*>> LoopCorrector::fuseAcrossLoop(
   *fused = 0;
   for (KeyFrame* kf : current_side) {
     if (pauses) pauses->pause();
-    *fused += fuser_.fuse(map_, *kf, old_side);
+    const FusionCounts counts = fuser_.fuse(map_, *kf, old_side);
+    *fused += counts.observations_added + counts.landmarks_merged;
   }
 
   // Links the fusion created between the two sides: the loop's own pose-graph edges.

@@ -112,7 +112,7 @@ KeyFrameInsertionStats Mapper::insertKeyFrame(const std::shared_ptr<KeyFrame>& k
   stats.global_ba_applied = writeBackSolvedGlobal().has_value();
   const std::vector<KeyFrame*> neighbours =
       keyframe->bestCovisible(options_.local.window_keyframes);
-  fuser_.fuse(map_, *keyframe, neighbours);
+  stats.fused = fuser_.fuse(map_, *keyframe, neighbours);
   keyframe->parent = spanningTreeParent(*keyframe);
   BundleWindow window = bundle_adjuster_.gatherLocal(*keyframe);
   lock.unlock();

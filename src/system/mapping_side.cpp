@@ -156,6 +156,8 @@ KeyFrameInsertionStats MappingSide::insertKeyFrame(const MappingJob& job, Mapped
   KeyFrameInsertionStats mapped =
       mapper_.insertKeyFrame(job.keyframe, hooks_.keep ? hooks_.keep : keep_reference);
   out.culled_points = mapped.culled_points;
+  out.merged_points = mapped.fused.landmarks_merged;
+  out.fused_observations = mapped.fused.observations_added;
   {
     std::lock_guard<std::mutex> lock(map_.updateMutex());
     if (hooks_.culled && !mapped.culled_keyframes.empty()) hooks_.culled(mapped.culled_keyframes);

@@ -68,7 +68,7 @@ struct Options : RunArguments {
   std::string map;                 // folder of a saved map to localise in; "" = a new map
   bool localisation_only = true;   // with --map: add no keyframes
   bool localisation_only_given = false;
-  std::optional<FrameGap> gap;     // --kidnap / --cover: frames taken out of the run
+  std::optional<FrameGap> gap;  // --kidnap / --cover: frames taken out of the run
 };
 
 const char* const kUsage =
@@ -164,22 +164,14 @@ Options parse(int argc, char** argv) {
   CommandLine line;
   line.usage_text = kUsage;
   line.flags = {"--no-lines", "--live", "--realtime", "--no-loop"};
-  line.options = {"--sequence",
-                  "--config",
-                  "--out",
-                  "--segmenter",
-                  "--model",
-                  "--input",
-                  "--dynamic",
-                  "--ground-truth-masks",
-                  "--segment-lag",
-                  "--max-frames",
-                  "--save-images",
-                  "--save-map",
-                  "--map",
-                  "--localisation-only",
-                  "--kidnap",
-                  "--cover"};
+  line.options = {"--sequence",    "--config",
+                  "--out",         "--segmenter",
+                  "--model",       "--input",
+                  "--dynamic",     "--ground-truth-masks",
+                  "--segment-lag", "--max-frames",
+                  "--save-images", "--save-map",
+                  "--map",         "--localisation-only",
+                  "--kidnap",      "--cover"};
   line.on_flag = [&](const std::string& flag) {
     (flag == "--live"       ? o.live
      : flag == "--realtime" ? o.realtime
@@ -414,6 +406,7 @@ struct RunCounts {
   double line_inliers = 0.0;
   size_t dynamic_features = 0;
   long frames = 0, lost = 0, keyframes_created = 0, keyframes_culled = 0, points_culled = 0;
+  long points_merged = 0, observations_fused = 0;  // the mapping side's fusion
   long keyframes_held_back = 0;  // frames that wanted a keyframe while the mapping side was behind
   long first_tracked = -1;       // index of the first tracked frame (in a loaded map: relocalised)
 
@@ -431,6 +424,8 @@ struct RunCounts {
   void add(const MappedKeyFrame& mapped) {
     keyframes_culled += static_cast<long>(mapped.map_update->erased_keyframes.size());
     points_culled += mapped.culled_points;
+    points_merged += mapped.merged_points;
+    observations_fused += mapped.fused_observations;
   }
 };
 
@@ -537,6 +532,8 @@ Json summaryJson(const Options& options, const SystemConfig& config, const TumSe
                {"keyframes_culled", c.keyframes_culled},
                {"map_points", system.map().numMapPoints()},
                {"map_points_culled", c.points_culled},
+               {"map_points_merged", c.points_merged},
+               {"observations_fused", c.observations_fused},
                {"segmenter", options.segmentation.kind},
                {"dynamic_mode", toString(config.dynamic.mode)},
                {"dynamic_features_dropped", c.dynamic_features},
@@ -654,7 +651,7 @@ class TumRun {
   Evaluation evaluation_;
   struct GapLog {
     double start_stamp = 0.0, end_stamp = 0.0;  // the last frame before it, the first after
-    long lost_after = 0;                         // frames after it before one was tracked
+    long lost_after = 0;                        // frames after it before one was tracked
     bool tracked_after = false;
     std::vector<double> relocalised;  // stamps of the frames tracking relocalised in
   } gap_;

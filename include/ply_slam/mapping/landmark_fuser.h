@@ -10,6 +10,18 @@
 
 namespace ply_slam {
 
+// What one fusion did: observations a keypoint without a landmark gained, and landmarks merged
+// into another found on the same keypoint (one physical point held twice).
+struct FusionCounts {
+  int observations_added = 0;
+  int landmarks_merged = 0;
+  FusionCounts& operator+=(const FusionCounts& o) {
+    observations_added += o.observations_added;
+    landmarks_merged += o.landmarks_merged;
+    return *this;
+  }
+};
+
 // Finds the landmarks of neighbouring keyframes in a new keyframe and the other way round:
 // a keypoint without a landmark gains an observation, and two landmarks found on one
 // keypoint are merged. Without this every keyframe would map the same corners afresh and
@@ -20,12 +32,11 @@ class LandmarkFuser {
   LandmarkFuser(const PinholeCamera& camera, const OrbOptions& orb,
                 const LocalMappingOptions& options);
 
-  // Returns the number of observations added plus landmarks merged.
-  int fuse(Map& map, KeyFrame& keyframe, const std::vector<KeyFrame*>& neighbours) const;
+  FusionCounts fuse(Map& map, KeyFrame& keyframe, const std::vector<KeyFrame*>& neighbours) const;
 
  private:
-  int fuseInto(Map& map, KeyFrame& target,
-               const std::vector<std::shared_ptr<MapPoint>>& points) const;
+  FusionCounts fuseInto(Map& map, KeyFrame& target,
+                        const std::vector<std::shared_ptr<MapPoint>>& points) const;
 
   const PinholeCamera camera_;
   const int num_levels_;

@@ -30,6 +30,7 @@ struct KeyFrameInsertionStats {
   // drop them too.
   std::vector<long> culled_keyframes;
   int culled_points = 0;  // points retired as unreliable or unconfirmed (not merges)
+  FusionCounts fused;     // the new keyframe with its neighbours (LandmarkFuser)
   // A global bundle adjustment solved meanwhile was written back first: the whole map moved.
   bool global_ba_applied = false;
   // What local BA moved, as the step left it: the poses of its window's own keyframes and the

@@ -74,7 +74,10 @@ struct MappedKeyFrame {
   // whole map).
   std::shared_ptr<const MapUpdate> map_update;
   int culled_points = 0;  // retired as unreliable or unconfirmed (the keyframes: map_update)
-  double ms = 0.0;        // the mapping side's time for it
+  // Fusion with the neighbours: landmarks merged into another (duplicates of one point), and
+  // observations gained by keypoints that had no landmark.
+  int merged_points = 0, fused_observations = 0;
+  double ms = 0.0;  // the mapping side's time for it
 };
 
 }  // namespace ply_slam
