@@ -17,7 +17,7 @@
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
-#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/rgbd_images.h"
 #include "ply_slam/loop/relocalisation_database.h"
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/key_frame_packet.h"
