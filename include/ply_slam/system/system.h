@@ -11,7 +11,6 @@
 #include <set>
 #include <stdexcept>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/dynamic/dynamic_rejector.h"
 #include "ply_slam/dynamic/feature_mark.h"
@@ -28,6 +27,7 @@
 #include "ply_slam/system/mapping_job.h"
 #include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/mapping_thread.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {
