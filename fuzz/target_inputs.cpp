@@ -9,12 +9,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/ros/conversions.h"
 #include "ply_slam/ros/rgbd_message_decoder.h"
 #include "ply_slam/ros/split_messages.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam_fuzz {
 namespace {

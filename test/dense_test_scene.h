@@ -5,9 +5,9 @@
 #include <memory>
 #include <opencv2/core.hpp>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/synth/synthetic_sequence.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam::test {
 

@@ -12,7 +12,6 @@
 #include <utility>
 
 #include "map_equality.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -20,6 +19,7 @@
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/system/key_frame_packet_builder.h"
 #include "ply_slam/system/mapping_job.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {

@@ -6,11 +6,11 @@
 
 #include <iostream>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/semantic/yolo_v8_seg.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "shared_data.h"
 
 namespace ply_slam {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 namespace {

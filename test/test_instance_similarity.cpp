@@ -5,9 +5,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "ply_slam/loop/instance_box.h"
 #include "ply_slam/loop/instance_similarity.h"
 #include "ply_slam/loop/loop_score.h"
+#include "ply_slam/semantic/instance_box.h"
 
 namespace ply_slam {
 namespace {

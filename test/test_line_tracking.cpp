@@ -8,7 +8,6 @@
 #include <random>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/point_residual.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/features/line_extractor.h"
@@ -17,6 +16,7 @@
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/mapping/landmark_creator.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/pose_optimizer.h"
 #include "ply_slam/tracking/tracker.h"
 #include "pose_test_helpers.h"

@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/features/edge_refiner.h"
 #include "ply_slam/features/frame_lines.h"
 #include "ply_slam/features/line_extractor.h"
@@ -24,6 +23,7 @@
 #include "ply_slam/features/registered_depth.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/synth/synthetic_sequence.h"
+#include "ply_slam/system/system_config.h"
 #include "shared_data.h"
 
 namespace ply_slam {

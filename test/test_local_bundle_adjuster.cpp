@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/global_bundle_adjustment.h"
 #include "ply_slam/mapping/local_bundle_adjuster.h"
+#include "ply_slam/system/system_config.h"
 #include "pose_test_helpers.h"
 
 namespace ply_slam {

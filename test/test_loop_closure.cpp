@@ -13,13 +13,13 @@
 
 #include "default_vocabularies.h"
 #include "map_equality.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
 #include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 namespace {

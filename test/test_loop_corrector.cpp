@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/mapping/landmark_fuser.h"
 #include "ply_slam/mapping/loop_corrector.h"
+#include "ply_slam/system/system_config.h"
 #include "pose_test_helpers.h"
 
 namespace ply_slam {

@@ -9,10 +9,10 @@
 
 #include "default_vocabularies.h"
 #include "loop_test_data.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/loop/loop_detector.h"
 #include "ply_slam/loop/loop_key_frame_builder.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 namespace {

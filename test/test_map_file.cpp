@@ -10,12 +10,12 @@
 #include <functional>
 
 #include "default_vocabularies.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/io/byte_reader.h"
+#include "ply_slam/io/fnv1a.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/loop/binary_vocabulary.h"
-#include "ply_slam/loop/fnv1a.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 

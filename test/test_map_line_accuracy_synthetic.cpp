@@ -11,11 +11,11 @@
 
 #include <iostream>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/eval/line_ground_truth.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 namespace {

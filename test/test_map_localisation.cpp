@@ -9,10 +9,10 @@
 
 #include "default_vocabularies.h"
 #include "map_equality.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 

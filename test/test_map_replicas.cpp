@@ -14,7 +14,6 @@
 
 #include "default_vocabularies.h"
 #include "map_equality.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
@@ -26,6 +25,7 @@
 #include "ply_slam/system/key_frame_packet_builder.h"
 #include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/tracker.h"
 #include "pose_test_helpers.h"
 #include "replica_run.h"

@@ -7,10 +7,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_trajectory_file.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/map/map_store.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 namespace {

@@ -7,11 +7,11 @@
 #include <set>
 
 #include "default_vocabularies.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/loop/vocabulary_path.h"
 #include "ply_slam/map/map_store.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "shared_data.h"
 
 namespace ply_slam {

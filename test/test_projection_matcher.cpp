@@ -5,9 +5,9 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/projection_matcher.h"
 #include "shared_data.h"
 

@@ -7,13 +7,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include "default_vocabularies.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/eval/trajectory_metrics.h"
 #include "ply_slam/features/orb_extractor.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/mapping/landmark_creator.h"
 #include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/tracker.h"
 #include "shared_data.h"
 

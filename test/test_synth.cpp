@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/synth/synthetic_sequence.h"
 #include "ply_slam/synth/synthetic_sequence_writer.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "shared_data.h"
 
 namespace ply_slam {

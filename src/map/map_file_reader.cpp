@@ -9,7 +9,7 @@
 
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/io/byte_reader.h"
-#include "ply_slam/loop/fnv1a.h"
+#include "ply_slam/io/fnv1a.h"
 #include "ply_slam/map/map_file_format.h"
 #include "ply_slam/map/map_value_check.h"
 

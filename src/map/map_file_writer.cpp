@@ -4,7 +4,7 @@
 
 #include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/byte_writer.h"
-#include "ply_slam/loop/fnv1a.h"
+#include "ply_slam/io/fnv1a.h"
 #include "ply_slam/map/map_file_format.h"
 
 namespace ply_slam {

@@ -26,7 +26,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/eval/pose_interpolation.h"
@@ -36,6 +35,7 @@
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/line_matcher.h"
 #include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/system/system_config.h"
 
 using namespace ply_slam;
 using Json = nlohmann::ordered_json;  // keys in the order written

@@ -22,7 +22,6 @@
 #include <sstream>
 
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
@@ -37,6 +36,7 @@
 #include "ply_slam/loop/loop_key_frame_builder.h"
 #include "ply_slam/semantic/segmenter_choice.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 
 namespace fs = std::filesystem;
 using namespace ply_slam;

@@ -25,7 +25,6 @@
 
 #include "ply_slam/common/angles.h"
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/number_text.h"
 #include "ply_slam/dense/key_frame_cloud_builder.h"
 #include "ply_slam/dense/semantic_octree.h"
@@ -35,6 +34,7 @@
 #include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/system/system_config.h"
 
 namespace fs = std::filesystem;
 using namespace ply_slam;

@@ -24,13 +24,13 @@
 #include <vector>
 
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/se3_params.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/io/atomic_file.h"
 #include "ply_slam/io/run_arguments.h"
 #include "ply_slam/io/tum_sequence.h"
 #include "ply_slam/io/tum_trajectory_file.h"
+#include "ply_slam/system/system_config.h"
 
 namespace {
 

@@ -20,7 +20,6 @@
 #include <thread>
 
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
@@ -45,6 +44,7 @@
 #include "ply_slam/semantic/mask_folder_segmenter.h"
 #include "ply_slam/semantic/segmenter_choice.h"
 #include "ply_slam/system/system.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/system/tracking_image.h"
 
 namespace fs = std::filesystem;

@@ -21,7 +21,6 @@
 #include <vector>
 
 #include "ply_slam/common/command_line.h"
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/statistics.h"
 #include "ply_slam/common/stopwatch.h"
 #include "ply_slam/features/line_extractor.h"
@@ -29,6 +28,7 @@
 #include "ply_slam/loop/binary_vocabulary.h"
 #include "ply_slam/loop/bow_database.h"
 #include "ply_slam/loop/training_images.h"
+#include "ply_slam/system/system_config.h"
 
 using namespace ply_slam;
 

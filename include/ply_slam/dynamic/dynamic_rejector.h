@@ -11,14 +11,12 @@
 #include "ply_slam/dynamic/depth_surfaces.h"
 #include "ply_slam/dynamic/dynamic_feature_filter.h"
 #include "ply_slam/dynamic/dynamic_options.h"
+#include "ply_slam/dynamic/feature_mark.h"
 #include "ply_slam/features/frame_features.h"
 #include "ply_slam/features/line_feature.h"
 #include "ply_slam/semantic/instance.h"
 
 namespace ply_slam {
-
-// Why a feature was left out of tracking, or that it was kept.
-enum class FeatureFate : unsigned char { kKept, kGeometric, kSemantic };
 
 struct DynamicRejection {
   std::vector<FeatureFate> fate;     // per feature of the current frame

@@ -3,7 +3,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "ply_slam/system/system.h"
+#include "ply_slam/dynamic/feature_mark.h"
 
 namespace ply_slam {
 

@@ -1,10 +1,10 @@
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
 #include "ply_slam/common/stamped_pose.h"
+#include "ply_slam/io/rgbd_images.h"
 
 namespace ply_slam {
 
@@ -14,14 +14,6 @@ struct RgbdRecord {
   std::string rgb_path;  // absolute or relative to the working directory
   double depth_stamp = 0.0;
   std::string depth_path;
-};
-
-// A loaded RGB-D frame: rgb is 8UC3 BGR, depth is CV_32F in metres (0 = invalid).
-struct RgbdImages {
-  double stamp = 0.0;        // rgb stamp
-  double depth_stamp = 0.0;  // when the depth image was taken; 0 = with the rgb image
-  cv::Mat rgb;
-  cv::Mat depth;
 };
 
 // A folder in the TUM RGB-D layout: rgb.txt, depth.txt, optional associations.txt and

@@ -4,8 +4,8 @@
 #include <optional>
 #include <vector>
 
-#include "ply_slam/loop/instance_box.h"
 #include "ply_slam/loop/loop_options.h"
+#include "ply_slam/semantic/instance_box.h"
 
 namespace ply_slam {
 

@@ -12,10 +12,10 @@
 #include "ply_slam/loop/binary_vocabulary.h"
 #include "ply_slam/loop/bow_database.h"
 #include "ply_slam/loop/geometric_check.h"
-#include "ply_slam/loop/instance_box.h"
 #include "ply_slam/loop/loop_candidate_selector.h"
 #include "ply_slam/loop/loop_options.h"
 #include "ply_slam/loop/loop_score.h"
+#include "ply_slam/semantic/instance_box.h"
 
 namespace ply_slam {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "ply_slam/common/pinhole_camera.h"
-#include "ply_slam/loop/instance_box.h"
 #include "ply_slam/map/key_frame.h"
+#include "ply_slam/semantic/instance_box.h"
 
 namespace ply_slam {
 

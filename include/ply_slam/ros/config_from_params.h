@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 

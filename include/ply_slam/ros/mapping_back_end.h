@@ -2,11 +2,11 @@
 
 #include <memory>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/dense/dense_mapping_worker.h"
 #include "ply_slam/dense/occupancy_grid_builder.h"
 #include "ply_slam/ros/mapping_node_options.h"
 #include "ply_slam/system/mapping_side.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 

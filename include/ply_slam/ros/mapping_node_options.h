@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/rgbd_images.h"
 
 namespace ply_slam {
 

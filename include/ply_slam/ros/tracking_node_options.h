@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-#include "ply_slam/common/config.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 

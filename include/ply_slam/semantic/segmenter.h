@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/rgbd_images.h"
 #include "ply_slam/semantic/instance.h"
 
 namespace ply_slam {

@@ -3,7 +3,7 @@
 #include <set>
 #include <vector>
 
-#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/rgbd_images.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/rgbd_images.h"
 #include "ply_slam/map/key_frame.h"
 #include "ply_slam/map/key_frame_packet.h"
 #include "ply_slam/map/map.h"

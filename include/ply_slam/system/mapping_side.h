@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/map/map.h"
 #include "ply_slam/map/map_file_contents.h"
 #include "ply_slam/mapping/mapper.h"
 #include "ply_slam/system/mapping_job.h"
+#include "ply_slam/system/system_config.h"
 
 namespace ply_slam {
 

@@ -11,13 +11,13 @@
 #include <set>
 #include <stdexcept>
 
-#include "ply_slam/common/config.h"
 #include "ply_slam/common/stamped_pose.h"
 #include "ply_slam/dynamic/dynamic_rejector.h"
+#include "ply_slam/dynamic/feature_mark.h"
 #include "ply_slam/features/line_extractor.h"
 #include "ply_slam/features/line_fitter.h"
 #include "ply_slam/features/orb_extractor.h"
-#include "ply_slam/io/tum_sequence.h"
+#include "ply_slam/io/rgbd_images.h"
 #include "ply_slam/loop/relocalisation_database.h"
 #include "ply_slam/map/anchored_trajectory.h"
 #include "ply_slam/map/key_frame_packet.h"
@@ -27,6 +27,7 @@
 #include "ply_slam/system/mapping_job.h"
 #include "ply_slam/system/mapping_side.h"
 #include "ply_slam/system/mapping_thread.h"
+#include "ply_slam/system/system_config.h"
 #include "ply_slam/tracking/tracker.h"
 
 namespace ply_slam {
@@ -43,13 +44,6 @@ struct FrameTiming {
   double total_ms = 0.0;     // features + lines + tracking: what the frame costs the tracking side
   double mapping_ms = 0.0;   // the mapping side's work delivered with this frame (on its own
                              // thread with MappingMode::kOwnThread: not a share of total_ms)
-};
-
-// One extracted point feature and what became of it (for the tracking image and reports).
-struct FeatureMark {
-  cv::Point2f pixel;  // raw image
-  FeatureFate fate = FeatureFate::kKept;
-  bool inlier = false;  // kept, matched to a landmark and an inlier of the pose optimisation
 };
 
 struct FrameResult {

@@ -1,4 +1,4 @@
-#include "ply_slam/common/config.h"
+#include "ply_slam/system/system_config.h"
 
 #include <yaml-cpp/yaml.h>
 

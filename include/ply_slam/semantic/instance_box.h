@@ -6,7 +6,8 @@
 
 namespace ply_slam {
 
-// An object instance as loop detection sees it: its class and its image box (pixels).
+// An object instance by its class and image box (pixels): what place recognition compares and
+// a map file keeps of each keyframe.
 struct InstanceBox {
   std::string class_name;
   cv::Rect2d box;
